@@ -1,0 +1,48 @@
+"""Shared test configuration: Hypothesis profiles, a guard against the global NumPy RNG, the
+working precision of mpmath restored after every test, and the location of the measured data."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, settings
+
+settings.register_profile("ci", max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("dev", max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("thorough", max_examples=500, deadline=None)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+#: Monte Carlo tests assert |mean − theory| ≤ Z_MONTE_CARLO · SE, one z for the whole suite.
+Z_MONTE_CARLO = 4.5
+
+SHARED_DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data"
+
+
+@pytest.fixture(autouse=True)
+def _restore_mpmath_precision():
+    dps = mpmath.mp.dps
+    yield
+    mpmath.mp.dps = dps
+
+
+@pytest.fixture(autouse=True)
+def _forbid_global_numpy_rng(monkeypatch):
+    """Any use of the legacy global ``np.random`` state fails the test: pass a Generator instead."""
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("the global numpy.random state was used; pass a numpy.random.Generator")
+
+    for name in ("rand", "randn", "random", "normal", "standard_normal", "uniform", "seed", "randint"):
+        monkeypatch.setattr(np.random, name, refuse)
+
+
+@pytest.fixture
+def shared_data() -> Path:
+    """The measured recordings in ../shared/data; the test is skipped, with the reason, when absent."""
+    if not SHARED_DATA.is_dir():
+        pytest.skip(f"measured data not found at {SHARED_DATA} (the shared/ folder beside the project)")
+    return SHARED_DATA

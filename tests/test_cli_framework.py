@@ -1,0 +1,22 @@
+"""The command framework: every sub-command registers, bad arguments exit 2 with a message."""
+
+from __future__ import annotations
+
+import pytest
+
+from carousel_theory.cli import build_parser, main
+
+
+def test_every_subcommand_has_a_handler():
+    parser = build_parser()
+    subparsers = next(a for a in parser._actions if a.dest == "command")
+    assert {"check", "derive"} <= set(subparsers.choices)
+    for name, sub in subparsers.choices.items():
+        assert callable(sub.get_default("handler")), name
+
+
+def test_unknown_command_exits_with_usage_error(capsys):
+    with pytest.raises(SystemExit) as excinfo:
+        main(["no-such-command"])
+    assert excinfo.value.code == 2
+    assert "invalid choice" in capsys.readouterr().err
