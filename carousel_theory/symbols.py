@@ -1,0 +1,66 @@
+"""Every SymPy symbol of the closed forms, defined once, with its assumptions.
+
+The registry (:mod:`carousel_theory.formulas`) and the closed forms
+(:mod:`carousel_theory.closed_forms`) use these objects, so that an expression built in one module
+substitutes cleanly in another (SymPy matches symbols by name *and* assumptions).
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+__all__ = [
+    "N",
+    "a",
+    "alpha",
+    "b",
+    "d",
+    "h",
+    "i",
+    "j",
+    "k",
+    "m",
+    "p",
+    "rho",
+    "sigma_q",
+    "sigma_w",
+    "theta",
+    "u",
+    "var_x",
+    "var_y",
+    "x",
+    "y",
+]
+
+#: Samples per carouseling revolution (= per averaging bin), TIM 2014 §III ("an integer N").
+N = sp.Symbol("N", integer=True, positive=True)
+#: Bin (revolution) numbers, counted from 1 as in TIM 2014 eq. (6) ("the t-th revolution").
+a = sp.Symbol("a", integer=True, positive=True)
+b = sp.Symbol("b", integer=True, positive=True)
+k = sp.Symbol("k", integer=True, positive=True)
+#: Summation indices: sample in a bin (i, j, from 1) and partial-sum length (m, from 0).
+i = sp.Symbol("i", integer=True, positive=True)
+j = sp.Symbol("j", integer=True, positive=True)
+m = sp.Symbol("m", integer=True, nonnegative=True)
+#: An integer frequency in the root-of-unity sums Σ_m exp(i p α_m).
+p = sp.Symbol("p", integer=True)
+#: Correlation coefficient of the two gyros' RRW increments (TIM 2014 §III-C assumes 0).
+rho = sp.Symbol("rho", real=True)
+#: White-noise variances of the x and y gyro (TIM 2014 eq. (9) takes them equal).
+var_x = sp.Symbol("var_x", nonnegative=True)
+var_y = sp.Symbol("var_y", nonnegative=True)
+#: Degree of fractional integration of 1/f noise, TIM 2014 eq. (3): 0 < d < 1.
+d = sp.Symbol("d", positive=True)
+#: Standard deviations of the RRW increments q_t (eq. (2)) and of the 1/f driving noise w_t (eq. (3)).
+sigma_q = sp.Symbol("sigma_q", positive=True)
+sigma_w = sp.Symbol("sigma_w", positive=True)
+#: Carouseling step angle θ = 2π/N, and the shifted angle α_m = (2m + 1)π/N of the partial sums.
+theta = sp.Symbol("theta", positive=True)
+alpha = sp.Symbol("alpha", real=True)
+#: u = exp(i α): the unit-circle variable in which a trigonometric polynomial becomes a Laurent polynomial.
+u = sp.Symbol("u", nonzero=True)
+#: Continuous time in one revolution (TIM 2014 eq. (18)): x, y ∈ [0, 1].
+x = sp.Symbol("x", real=True)
+y = sp.Symbol("y", real=True)
+#: h = 1/N, the expansion variable of the large-N series.
+h = sp.Symbol("h", positive=True)
