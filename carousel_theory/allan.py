@@ -1,0 +1,454 @@
+"""Allan variance: estimators, confidence intervals, and the exact Allan variance of discrete noise models.
+
+Estimators
+    non-overlapping, exactly TIM 2014 eq. (20): the data are cut into M disjoint bins of m samples
+    (τ = m/f_s, a trailing partial bin is dropped) and
+    σ_A²(τ) = 1/(2(M−1)) Σ_{j=1}^{M−1} (ȳ_{j+1} − ȳ_j)²;
+    overlapping: the same difference taken at every start sample s = 0 … n−2m (n − 2m + 1 terms).
+    Both equal allantools' ``adev``/``oadev`` (squared, ``data_type="freq"``) on the same input.
+
+Confidence intervals
+    Each estimate is a quadratic form Σ_s d_s² of Gaussian differences d_s. With c(k) the covariance of
+    the differences at a lag of k samples, its mean is K·c(0) and its variance 2 Σ_{s,r} c(s−r)², so the
+    equivalent degrees of freedom (Satterthwaite; Greenhall and Riley's EDF) are
+    ν = K² c(0)² / (K c(0)² + 2 Σ_{l≥1} (K−l) c(l·p)²), p the stride (m or 1).
+    Here c(k) is computed exactly from the noise model (white, rate random walk, quantization: finite
+    filters; 1/f: the fractional-integration filter truncated at the record length). The interval is
+    ν σ̂²/χ²_ν((1+level)/2) … ν σ̂²/χ²_ν((1−level)/2) (scipy.stats.chi2).
+
+Model Allan variance
+    The expected value of the estimator for each discrete process of TIM 2014 §II, exactly (not the
+    asymptotic slopes): white σ²/m, rate random walk σ_q²(2m²+1)/(6m) (derived in
+    ``derivations/allan_variance_models.md``), quantization 3Q²/τ², and 1/f noise by fractional
+    integration (eq. (3)) for any 0 < d < 1, whose Allan variance depends on the position in the record
+    and hence on the record length, evaluated with the cumulative coefficients Ψ_u = Σ_{j≤u} ψ_j.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import sympy as sp
+from scipy import stats
+
+from carousel_theory._validation import (
+    check_finite_array,
+    check_fractional_order,
+    check_positive_integer,
+    check_positive_real,
+)
+from carousel_theory.processes import fractional_coefficients
+
+if TYPE_CHECKING:
+    from carousel_theory.fitting import NoiseModel
+
+__all__ = [
+    "ESTIMATORS",
+    "NOISE_TYPES",
+    "QUANTIZATION_ALLAN_VARIANCE",
+    "RRW_ALLAN_VARIANCE",
+    "WHITE_ALLAN_VARIANCE",
+    "AllanResult",
+    "allan_variance",
+    "difference_covariance",
+    "equivalent_degrees_of_freedom",
+    "flicker_allan_variance",
+    "graycode_allan_variance",
+    "model_allan_variance",
+    "octave_cluster_sizes",
+]
+
+ESTIMATORS = ("overlapping", "non-overlapping")
+NOISE_TYPES = ("white", "rrw", "flicker", "quantization")
+
+# Symbols of the closed forms: m samples per cluster, per-sample variances, sample interval.
+_m = sp.Symbol("m", integer=True, positive=True)
+_white_variance = sp.Symbol("sigma_WN^2", positive=True)
+_rrw_variance = sp.Symbol("sigma_q^2", positive=True)
+_quantization = sp.Symbol("Q", positive=True)
+_sample_interval = sp.Symbol("Delta_t", positive=True)
+
+#: Exact Allan variance of discrete white noise of per-sample variance σ_WN², m samples per cluster.
+WHITE_ALLAN_VARIANCE: sp.Expr = _white_variance / _m
+#: Exact Allan variance of the rate random walk of TIM 2014 eq. (2), increment variance σ_q² per sample.
+RRW_ALLAN_VARIANCE: sp.Expr = _rrw_variance * (2 * _m**2 + 1) / (6 * _m)
+#: Exact Allan variance of a white angle error of variance Q² differenced into the rate (τ = mΔt).
+QUANTIZATION_ALLAN_VARIANCE: sp.Expr = 3 * _quantization**2 / (_m * _sample_interval) ** 2
+
+_white_numeric = sp.lambdify((_white_variance, _m), WHITE_ALLAN_VARIANCE, "numpy")
+_rrw_numeric = sp.lambdify((_rrw_variance, _m), RRW_ALLAN_VARIANCE, "numpy")
+_quantization_numeric = sp.lambdify(
+    (_quantization, _m, _sample_interval), QUANTIZATION_ALLAN_VARIANCE, "numpy"
+)
+
+
+@dataclass(frozen=True)
+class AllanResult:
+    """Allan variance estimates at a set of averaging times.
+
+    Attributes
+    ----------
+    tau : ndarray
+        Averaging times τ = m / f_s in s.
+    avar : ndarray
+        Allan variance estimates ((rad/s)² for rates in rad/s).
+    ci_low, ci_high : ndarray
+        Confidence interval at level ``confidence`` (χ² with ``edf`` degrees of freedom).
+    clusters : ndarray
+        Number M of disjoint clusters (bins) of τ in the record, as in TIM 2014 eq. (20).
+    estimator : str
+        "overlapping" or "non-overlapping".
+    samples_per_cluster : ndarray
+        m = τ f_s.
+    terms : ndarray
+        Number of squared differences averaged (M − 1, or n − 2m + 1 when overlapping).
+    edf : ndarray
+        Equivalent degrees of freedom of each estimate under ``noise``.
+    confidence : float
+        Level of the intervals.
+    noise : str
+        The noise model that the degrees of freedom assume.
+    """
+
+    tau: np.ndarray
+    avar: np.ndarray
+    ci_low: np.ndarray
+    ci_high: np.ndarray
+    clusters: np.ndarray
+    estimator: str
+    samples_per_cluster: np.ndarray | None = None
+    terms: np.ndarray | None = None
+    edf: np.ndarray | None = None
+    confidence: float = 0.95
+    noise: str = "white"
+
+    @property
+    def adev(self) -> np.ndarray:
+        """Allan deviation √σ_A²."""
+        return np.sqrt(self.avar)
+
+
+def octave_cluster_sizes(length: int) -> np.ndarray:
+    """m = 1, 2, 4, … with τ at most a third of the record (m ≤ n/3, so at least 3 clusters)."""
+    length = check_positive_integer("length", length, minimum=3)
+    count = int(np.floor(np.log2(length / 3))) + 1
+    return 2 ** np.arange(count, dtype=np.int64)
+
+
+def _check_estimator(estimator: Any) -> str:
+    if estimator not in ESTIMATORS:
+        raise ValueError(f"estimator={estimator!r}: must be one of {ESTIMATORS}")
+    return str(estimator)
+
+
+def _cluster_sizes(taus: Any, sample_rate: float, length: int) -> tuple[np.ndarray, bool]:
+    """Samples per cluster for ``taus`` and whether they are the octave sequence."""
+    if isinstance(taus, str):
+        if taus != "octave":
+            raise ValueError(f"taus={taus!r}: must be 'octave' or an array of averaging times in s")
+        if length < 3:
+            raise ValueError(f"y: needs at least 3 samples for an Allan variance, got {length}")
+        return octave_cluster_sizes(length), True
+    tau_array = check_finite_array("taus", np.atleast_1d(taus))
+    sizes = tau_array * sample_rate
+    rounded = np.rint(sizes)
+    bad = np.flatnonzero((rounded < 1) | (np.abs(sizes - rounded) > 1e-9 * np.maximum(sizes, 1.0)))
+    if bad.size:
+        i = int(bad[0])
+        raise ValueError(
+            f"taus[{i}]={tau_array[i]!r}: must be a positive whole number of sample intervals "
+            f"(1/{sample_rate:g} s)"
+        )
+    sizes = rounded.astype(np.int64)
+    too_long = np.flatnonzero(3 * sizes > length)
+    if too_long.size:
+        i = int(too_long[0])
+        raise ValueError(
+            f"taus[{i}]={tau_array[i]!r}: longer than a third of the recording ({length} samples = "
+            f"{length / sample_rate:.6g} s); at least 3 clusters are needed"
+        )
+    if np.any(np.diff(sizes) <= 0):
+        raise ValueError(f"taus={tau_array!r}: must be strictly increasing")
+    return sizes, False
+
+
+def _non_overlapping_sums(centered: np.ndarray, sizes: np.ndarray, octave: bool) -> np.ndarray:
+    """Σ of squared differences of adjacent disjoint-bin *sums*, per cluster size."""
+    result = np.empty(len(sizes))
+    if octave:
+        # Bin sums at 2m are pairwise sums of those at m: O(n) in all, and pairwise summation is accurate.
+        sums = centered
+        for level in range(len(sizes)):
+            if level:
+                count = len(sums) // 2
+                sums = sums[: 2 * count : 2] + sums[1 : 2 * count : 2]
+            differences = np.diff(sums)
+            result[level] = np.dot(differences, differences)
+        return result
+    for i, m in enumerate(sizes):
+        count = len(centered) // m
+        sums = centered[: count * m].reshape(count, m).sum(axis=1)
+        differences = np.diff(sums)
+        result[i] = np.dot(differences, differences)
+    return result
+
+
+def _overlapping_sums(centered: np.ndarray, sizes: np.ndarray, octave: bool) -> np.ndarray:
+    """Σ over every start sample of the squared difference of adjacent window sums, per cluster size."""
+    result = np.empty(len(sizes))
+    if octave:
+        window = centered  # window sums of length m at every start
+        for level, m in enumerate(sizes):
+            if level:
+                half = m // 2
+                window = window[:-half] + window[half:]
+            differences = window[m:] - window[:-m]
+            result[level] = np.dot(differences, differences)
+        return result
+    cumulative = np.concatenate(([0.0], np.cumsum(centered)))
+    for i, m in enumerate(sizes):
+        window = cumulative[m:] - cumulative[:-m]
+        differences = window[m:] - window[:-m]
+        result[i] = np.dot(differences, differences)
+    return result
+
+
+def _component_filters(
+    noise: Any, m: int, length: int, sample_rate: float
+) -> list[tuple[float, np.ndarray | None]]:
+    """(driving variance, filter) pairs whose filters map unit white noise to the cluster-sum difference."""
+    if isinstance(noise, str):
+        if noise not in NOISE_TYPES:
+            raise ValueError(f"noise={noise!r}: must be one of {NOISE_TYPES} or a NoiseModel")
+        parts = {noise: 1.0}
+        d = 0.5 if noise == "flicker" else None
+    else:
+        parts = {
+            "white": float(noise.white_variance),
+            "rrw": float(noise.rrw_variance),
+            "flicker": float(noise.flicker_variance),
+            "quantization": float(noise.quantization) ** 2 * sample_rate**2,
+        }
+        d = noise.flicker_d
+        parts = {name: value for name, value in parts.items() if value > 0}
+        if not parts:
+            raise ValueError(f"noise={noise!r}: the model has no noise component")
+    filters = []
+    for name, variance in parts.items():
+        taps: np.ndarray | None
+        if name == "white":
+            taps = None  # see difference_covariance
+        elif name == "rrw":
+            taps = np.concatenate((np.arange(m, dtype=np.float64), np.arange(m, 0, -1, dtype=np.float64)))
+        elif name == "quantization":
+            taps = np.zeros(2 * m + 1)
+            taps[[0, m, 2 * m]] = (1.0, -2.0, 1.0)
+        else:
+            taps = _second_difference_of_cumulative_psi(float(d), m, length)
+        filters.append((variance, taps))
+    return filters
+
+
+def _second_difference_of_cumulative_psi(d: float, m: int, length: int) -> np.ndarray:
+    """G(u) = Ψ_u − 2Ψ_{u−m} + Ψ_{u−2m}, u = 0 … length−1, with Ψ_u = Σ_{k≤u} ψ_k and Ψ = 0 below 0."""
+    psi_sum = np.cumsum(fractional_coefficients(d, length))
+    G = psi_sum.copy()
+    if m < length:
+        G[m:] -= 2.0 * psi_sum[:-m]
+    if 2 * m < length:
+        G[2 * m :] += psi_sum[: -2 * m]
+    return G
+
+
+def difference_covariance(
+    noise: Any, m: int, lags: np.ndarray, length: int, sample_rate: float = 1.0
+) -> np.ndarray:
+    """Covariance of the cluster-sum differences d_s and d_{s+k} at the given lags k (samples).
+
+    ``noise`` is a noise-type name (unit driving variance) or a NoiseModel. The 1/f filter is truncated
+    at ``length`` samples, which is exact for the last difference of a record of that length.
+    """
+    lags = np.abs(np.asarray(lags, dtype=np.int64))
+    total = np.zeros(len(lags))
+    for variance, taps in _component_filters(noise, m, length, sample_rate):
+        if taps is None:  # white noise: the autocovariance of the ±1 taps in closed form
+            k = lags.astype(np.float64)
+            total += variance * np.where(lags <= m, 2 * m - 3 * k, np.where(lags < 2 * m, k - 2 * m, 0.0))
+            continue
+        size = 1 << int(np.ceil(np.log2(2 * len(taps))))
+        spectrum = np.fft.rfft(taps, size)
+        autocovariance = np.fft.irfft(spectrum * np.conj(spectrum), size)[: len(taps)]
+        inside = lags < len(taps)
+        total[inside] += variance * autocovariance[lags[inside]]
+    return total
+
+
+def equivalent_degrees_of_freedom(
+    noise: Any, m: int, terms: int, stride: int, length: int, sample_rate: float = 1.0
+) -> float:
+    """ν = K² c(0)² / (K c(0)² + 2 Σ_{l=1}^{K−1} (K − l) c(l p)²) for K terms at stride p (Gaussian noise)."""
+    reach = 2 * m + 1 if not _has_flicker(noise) else length
+    count = min(terms, reach // stride + 2)
+    lags = np.arange(count, dtype=np.int64) * stride
+    covariance = difference_covariance(noise, m, lags, length, sample_rate)
+    weights = terms - np.arange(count, dtype=np.float64)
+    denominator = terms * covariance[0] ** 2 + 2.0 * np.dot(weights[1:], covariance[1:] ** 2)
+    return float(terms**2 * covariance[0] ** 2 / denominator)
+
+
+def _has_flicker(noise: Any) -> bool:
+    if isinstance(noise, str):
+        return noise == "flicker"
+    return float(noise.flicker_variance) > 0
+
+
+def allan_variance(
+    y: Any,
+    sample_rate: float,
+    taus: Any = "octave",
+    *,
+    estimator: str = "overlapping",
+    noise: Any = "white",
+    confidence: float = 0.95,
+) -> AllanResult:
+    """Allan variance of the rate samples ``y`` with χ² confidence intervals.
+
+    Parameters
+    ----------
+    y : 1-D array
+        Rate samples (rad/s), uniformly sampled.
+    sample_rate : float
+        Samples per second.
+    taus : "octave" or array of float
+        "octave": τ = 2^k/f_s up to a third of the record. Otherwise averaging times in s, each a whole
+        number of samples and at most a third of the record.
+    estimator : {"overlapping", "non-overlapping"}
+        "non-overlapping" is TIM 2014 eq. (20).
+    noise : str or NoiseModel
+        The noise assumed for the degrees of freedom: "white", "rrw", "flicker" (d = 1/2, the 1/f spectrum),
+        "quantization", or a fitted :class:`carousel_theory.fitting.NoiseModel`.
+    confidence : float
+        Level of the intervals, in (0, 1).
+    """
+    sample_rate = float(check_positive_real("sample_rate", sample_rate))
+    estimator = _check_estimator(estimator)
+    confidence = float(check_positive_real("confidence", confidence))
+    if not confidence < 1:
+        raise ValueError(f"confidence={confidence!r}: must be in (0, 1)")
+    if isinstance(noise, str) and noise not in NOISE_TYPES:
+        raise ValueError(f"noise={noise!r}: must be one of {NOISE_TYPES} or a NoiseModel")
+    samples = check_finite_array("y", y, min_length=3)
+    length = len(samples)
+    sizes, octave = _cluster_sizes(taus, sample_rate, length)
+    # The Allan variance ignores a constant; removing the mean keeps running sums small and accurate.
+    centered = samples - samples.mean()
+    if estimator == "overlapping":
+        sums = _overlapping_sums(centered, sizes, octave)
+        terms = length - 2 * sizes + 1
+    else:
+        sums = _non_overlapping_sums(centered, sizes, octave)
+        terms = length // sizes - 1
+    avar = sums / (2.0 * sizes.astype(np.float64) ** 2 * terms)
+    stride = 1 if estimator == "overlapping" else None
+    edf = np.array(
+        [
+            equivalent_degrees_of_freedom(noise, int(m), int(k), stride or int(m), length, sample_rate)
+            for m, k in zip(sizes, terms, strict=True)
+        ]
+    )
+    upper_quantile = stats.chi2.ppf((1.0 + confidence) / 2.0, edf)
+    lower_quantile = stats.chi2.ppf((1.0 - confidence) / 2.0, edf)
+    return AllanResult(
+        tau=sizes / sample_rate,
+        avar=avar,
+        ci_low=edf * avar / upper_quantile,
+        ci_high=edf * avar / lower_quantile,
+        clusters=length // sizes,
+        estimator=estimator,
+        samples_per_cluster=sizes,
+        terms=terms,
+        edf=edf,
+        confidence=confidence,
+        noise=noise if isinstance(noise, str) else "model",
+    )
+
+
+def flicker_allan_variance(
+    d: float, tau_samples: Any, length: int, estimator: str = "non-overlapping"
+) -> np.ndarray:
+    """Expected Allan variance of the 1/f process of TIM 2014 eq. (3) (σ_w² = 1) in a record of ``length``.
+
+    The difference of bins j and j+1 has variance Σ_{u=0}^{(j+1)m−1} G(u)²/m² with
+    G(u) = Ψ_u − 2Ψ_{u−m} + Ψ_{u−2m}, Ψ_u = Σ_{k≤u} ψ_k (Ψ = 0 for negative index); the process starts at
+    t = 1, so this grows with j, and the expected estimate is its average over the differences used.
+    """
+    d = check_fractional_order("d", d)
+    length = check_positive_integer("length", length, minimum=3)
+    estimator = _check_estimator(estimator)
+    sizes = _check_tau_samples(tau_samples, length)
+    result = np.empty(len(sizes))
+    for i, m in enumerate(sizes):
+        G = _second_difference_of_cumulative_psi(float(d), int(m), length)
+        cumulative = np.cumsum(G**2)
+        if estimator == "non-overlapping":
+            count = length // m
+            last = np.arange(2, count + 1) * m - 1  # (j+1)m − 1 for j = 1 … M−1
+        else:
+            last = np.arange(0, length - 2 * m + 1) + 2 * m - 1
+        result[i] = cumulative[last].mean() / (2.0 * m * m)
+    return result
+
+
+def _check_tau_samples(tau_samples: Any, length: int | None = None) -> np.ndarray:
+    array = np.atleast_1d(np.asarray(tau_samples))
+    if array.ndim != 1 or array.size == 0 or not np.issubdtype(array.dtype, np.integer):
+        raise TypeError(f"tau_samples={tau_samples!r}: must be a non-empty 1-D array of integers (samples)")
+    if np.any(array < 1):
+        raise ValueError(f"tau_samples={tau_samples!r}: must be >= 1")
+    if length is not None and np.any(3 * array > length):
+        raise ValueError(f"tau_samples={tau_samples!r}: must be at most a third of length={length}")
+    return array.astype(np.int64)
+
+
+def model_allan_variance(
+    model: NoiseModel, tau_samples: Any, *, length: int | None = None, estimator: str = "non-overlapping"
+) -> np.ndarray:
+    """Exact expected Allan variance of the discrete noise model at m = ``tau_samples`` samples.
+
+    Sum of the independent components: white σ²/m, rate random walk σ_q²(2m²+1)/(6m), quantization 3Q²/τ²
+    and 1/f (:func:`flicker_allan_variance`, which needs the record ``length``). The bias adds nothing.
+    """
+    for attribute in ("white_variance", "rrw_variance", "flicker_variance", "flicker_d", "quantization"):
+        if not hasattr(model, attribute):
+            raise TypeError(f"model={model!r}: must be a NoiseModel (missing {attribute!r})")
+    sizes = _check_tau_samples(tau_samples, length)
+    m = sizes.astype(np.float64)
+    total = _white_numeric(float(model.white_variance), m) + _rrw_numeric(float(model.rrw_variance), m)
+    if model.quantization:
+        total = total + _quantization_numeric(float(model.quantization), m, 1.0 / float(model.sample_rate))
+    if model.flicker_variance:
+        if length is None:
+            raise ValueError(
+                "length=None: the Allan variance of the 1/f process of TIM 2014 eq. (3) depends on the "
+                "record length; give length= (samples)"
+            )
+        total = total + float(model.flicker_variance) * flicker_allan_variance(
+            model.flicker_d, sizes, length, estimator
+        )
+    return np.asarray(total, dtype=np.float64)
+
+
+def graycode_allan_variance(n: int, m: int, C: float = 1.0) -> Any:
+    """Exact non-overlapping Allan variance of the Gray-code sequence R_{2^n} at τ = 2^m (TIM 2014 §IV).
+
+    Delegates to :func:`carousel_theory.graycode.allan_variance_exact`.
+    """
+    n = check_positive_integer("n", n, minimum=2)
+    m = check_positive_integer("m", m, minimum=0)
+    try:
+        from carousel_theory.graycode import allan_variance_exact
+    except ImportError as error:  # the Gray-code module is a separate part of the package
+        raise ImportError(f"carousel_theory.graycode is not available ({error})") from None
+    return allan_variance_exact(n, m, C)

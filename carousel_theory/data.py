@@ -1,0 +1,378 @@
+"""Reading measured gyro recordings (CSV, NPZ, arrays, a pandas DataFrame) into one checked form.
+
+A :class:`Recording` holds time (s), gyro rates (rad/s), the sample rate (Hz) and optional temperature
+(°C) and carouseling angle (rad). Every reader checks, before returning, for an empty input, a file that
+is not what its extension says, NaN/inf (naming the column and the row), non-monotonic or non-uniform
+timestamps and gaps (naming the first index and time). Irregular timing is refused unless the caller
+asks to keep it (``irregular="keep"``); the recording is then marked ``uniform=False`` and analyses that
+need a uniform sample rate (the Allan variance) refuse it. Files are only ever opened for reading.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import zipfile
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from carousel_theory._validation import check_positive_real
+from carousel_theory.units import rate_to_rad_per_s
+
+__all__ = ["Recording", "load_recording", "recording_from_arrays"]
+
+#: Relative spread of the time steps tolerated as "uniform" (clock jitter of float timestamps).
+UNIFORM_TOLERANCE = 1e-6
+#: A time step longer than this many nominal steps is reported as a gap.
+GAP_FACTOR = 1.5
+
+_TIME_NAMES = ("t", "time", "time_s", "timestamp")
+_TEMPERATURE_NAMES = ("temp", "temperature")
+_ANGLE_NAMES = ("phi", "angle")
+_RATE_PREFIXES = ("w", "gyro", "omega")
+_NON_RATE_NAMES = {"t_raw", "fs", "sample_rate"}
+
+
+@dataclass(frozen=True)
+class Recording:
+    """A checked gyro recording.
+
+    Attributes
+    ----------
+    time : ndarray
+        Sample times in s, strictly increasing.
+    rates : dict[str, ndarray]
+        Gyro rates in rad/s, one entry per axis (e.g. ``{"wx": ..., "wy": ...}``).
+    sample_rate : float
+        Samples per second (the nominal rate when ``uniform`` is False).
+    temperature : ndarray or None
+        Temperature in °C, when recorded.
+    angle : ndarray or None
+        Carouseling angle φ in rad (the 'phi' column), when recorded.
+    source : str
+        Where the data came from (a path or "arrays").
+    uniform : bool
+        True when the timestamps are uniform within ``UNIFORM_TOLERANCE`` and have no gaps.
+    """
+
+    time: np.ndarray
+    rates: dict[str, np.ndarray]
+    sample_rate: float
+    temperature: np.ndarray | None = None
+    angle: np.ndarray | None = None
+    source: str = "arrays"
+    uniform: bool = True
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def duration(self) -> float:
+        """Length of the recording in s: number of samples / sample rate."""
+        return len(self.time) / self.sample_rate
+
+    def __len__(self) -> int:
+        return len(self.time)
+
+    def require_duration(self, seconds: float, purpose: str) -> None:
+        """Refuse (ValueError) when the recording is shorter than ``seconds`` for ``purpose``."""
+        if self.duration < seconds:
+            raise ValueError(
+                f"{self.source}: the recording lasts {self.duration:.6g} s, too short for {purpose} "
+                f"(needs {seconds:.6g} s)"
+            )
+
+
+def _check_column(name: str, values: Any, source: str, expected_length: int | None) -> np.ndarray:
+    try:
+        array = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError) as error:
+        raise TypeError(f"{source}: column {name!r} must hold real numbers ({error})") from None
+    if array.ndim != 1:
+        raise ValueError(f"{source}: column {name!r} must be 1-dimensional, got shape {array.shape}")
+    if expected_length is not None and len(array) != expected_length:
+        raise ValueError(
+            f"{source}: column {name!r} has {len(array)} samples but the others have {expected_length}"
+        )
+    bad = np.flatnonzero(~np.isfinite(array))
+    if bad.size:
+        first = int(bad[0])
+        raise ValueError(
+            f"{source}: column {name!r} holds {float(array[first])!r} at row {first} (counted from 0, "
+            f"header excluded; first of {bad.size} non-finite values); remove or interpolate them first"
+        )
+    return array
+
+
+def _check_timing(time: np.ndarray, source: str, irregular: str) -> tuple[float, bool, tuple[str, ...]]:
+    """Return (sample rate, uniform, notes) or raise on non-monotonic / irregular timestamps."""
+    steps = np.diff(time)
+    bad = np.flatnonzero(steps <= 0)
+    if bad.size:
+        i = int(bad[0])
+        raise ValueError(
+            f"{source}: timestamps are not strictly increasing: t[{i}]={time[i]!r} then "
+            f"t[{i + 1}]={time[i + 1]!r} ({bad.size} such steps)"
+        )
+    nominal = float(np.median(steps))
+    gaps = np.flatnonzero(steps > GAP_FACTOR * nominal)
+    uneven = np.flatnonzero(np.abs(steps - nominal) > UNIFORM_TOLERANCE * nominal)
+    notes: list[str] = []
+    if gaps.size:
+        i = int(gaps[0])
+        notes.append(
+            f"gap: {gaps.size} steps longer than {GAP_FACTOR} x the median step {nominal:.6g} s; the first "
+            f"is between t[{i}]={time[i]:.6g} s and t[{i + 1}]={time[i + 1]:.6g} s"
+        )
+    elif uneven.size:
+        i = int(uneven[0])
+        notes.append(
+            f"non-uniform timestamps: {uneven.size} steps differ from the median step {nominal:.6g} s by "
+            f"more than {UNIFORM_TOLERANCE:g} relative; the first is t[{i + 1}]-t[{i}]={steps[i]:.6g} s"
+        )
+    if notes and irregular == "refuse":
+        raise ValueError(f"{source}: {notes[0]} (pass irregular='keep' to keep the timestamps as they are)")
+    if notes:
+        # The nominal rate of irregular data is the mean rate, not the median: it keeps duration right.
+        return (len(time) - 1) / float(time[-1] - time[0]), False, tuple(notes)
+    return 1.0 / nominal, True, ()
+
+
+def recording_from_arrays(
+    rates: Mapping[str, Any] | Any,
+    *,
+    time: Any = None,
+    sample_rate: float | None = None,
+    temperature: Any = None,
+    angle: Any = None,
+    units: str = "rad/s",
+    source: str = "arrays",
+    irregular: str = "refuse",
+) -> Recording:
+    """Build a checked :class:`Recording` from arrays.
+
+    Parameters
+    ----------
+    rates : mapping of name to 1-D array, or a pandas DataFrame
+        The gyro columns, in ``units``. A DataFrame contributes every column (use ``time=`` etc. for the
+        others, or pass ``df[["wx", "wy"]]``).
+    time : 1-D array, optional
+        Sample times in s. Without it, ``sample_rate`` is required and ``t = index / sample_rate``.
+    sample_rate : float, optional
+        Samples per second. With ``time`` as well, the two must agree to 1e-6 relative.
+    temperature, angle : 1-D arrays, optional
+        °C and rad.
+    units : {"rad/s", "deg/s", "deg/h"}
+        Units of ``rates``.
+    irregular : {"refuse", "keep"}
+        What to do with gaps or non-uniform timestamps.
+    """
+    if irregular not in ("refuse", "keep"):
+        raise ValueError(f"irregular={irregular!r}: must be 'refuse' or 'keep'")
+    if not isinstance(source, str):
+        raise TypeError(f"source={source!r}: must be a string")
+    if hasattr(rates, "columns") and hasattr(
+        rates, "to_numpy"
+    ):  # a pandas DataFrame, without importing pandas
+        rates = {str(name): rates[name].to_numpy() for name in rates.columns}
+    if not isinstance(rates, Mapping):
+        raise TypeError(
+            f"rates={type(rates).__name__}: must be a mapping of column name to array, or a DataFrame"
+        )
+    if len(rates) == 0:
+        raise ValueError(f"{source}: no gyro columns (rates is empty)")
+    if sample_rate is not None:
+        sample_rate = float(check_positive_real("sample_rate", sample_rate))
+    length: int | None = None
+    converted: dict[str, np.ndarray] = {}
+    for name, values in rates.items():
+        if not isinstance(name, str):
+            raise TypeError(f"rates: column name {name!r} must be a string")
+        array = _check_column(name, values, source, length)
+        length = len(array)
+        converted[name] = rate_to_rad_per_s(array, units)
+    assert length is not None
+    if length < 2:
+        raise ValueError(f"{source}: needs at least 2 samples, got {length}")
+    if time is None:
+        if sample_rate is None:
+            raise ValueError(f"{source}: no time column and no sample_rate; give one of them")
+        time_array = np.arange(length, dtype=np.float64) / sample_rate
+        rate, uniform, notes = sample_rate, True, ()
+    else:
+        time_array = _check_column("time", time, source, length)
+        rate, uniform, notes = _check_timing(time_array, source, irregular)
+        if sample_rate is not None and uniform and abs(rate - sample_rate) > 1e-6 * sample_rate:
+            raise ValueError(
+                f"{source}: sample_rate={sample_rate!r} disagrees with the time column ({rate:.9g} Hz)"
+            )
+        if sample_rate is not None and uniform:
+            rate = sample_rate
+    temperature_array = (
+        None if temperature is None else _check_column("temperature", temperature, source, length)
+    )
+    angle_array = None if angle is None else _check_column("angle", angle, source, length)
+    return Recording(
+        time=time_array,
+        rates=converted,
+        sample_rate=float(rate),
+        temperature=temperature_array,
+        angle=angle_array,
+        source=source,
+        uniform=uniform,
+        notes=notes,
+    )
+
+
+def _is_rate_name(name: str) -> bool:
+    lowered = name.lower()
+    if lowered in _NON_RATE_NAMES or lowered in _TIME_NAMES or lowered in _TEMPERATURE_NAMES:
+        return False
+    if lowered in _ANGLE_NAMES:
+        return False
+    return lowered.startswith(_RATE_PREFIXES)
+
+
+def _pick(names: list[str], candidates: tuple[str, ...]) -> str | None:
+    for name in names:
+        if name.lower() in candidates:
+            return name
+    return None
+
+
+def _read_npz(path: Path) -> dict[str, np.ndarray]:
+    with path.open("rb") as handle:
+        magic = handle.read(4)
+    if magic != b"PK\x03\x04":
+        raise ValueError(f"{path}: not an NPZ file (an NPZ is a zip archive; the file starts with {magic!r})")
+    try:
+        with np.load(path, allow_pickle=False) as archive:
+            return {name: np.asarray(archive[name]) for name in archive.files}
+    except (ValueError, OSError, zipfile.BadZipFile) as error:
+        raise ValueError(f"{path}: not a readable NPZ file ({error})") from None
+
+
+def _read_csv(path: Path) -> dict[str, np.ndarray]:
+    raw = path.read_bytes()
+    if b"\x00" in raw[:4096] or raw[:4] == b"PK\x03\x04":
+        raise ValueError(f"{path}: not a CSV text file (binary content)")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{path}: not a CSV text file (not UTF-8: {error})") from None
+    lines = text.splitlines()
+    if not lines or not lines[0].strip():
+        raise ValueError(f"{path}: empty CSV file (no header row)")
+    header_line = lines[0]
+    delimiter = ","
+    for candidate in (",", ";", "\t"):
+        if candidate in header_line:
+            delimiter = candidate
+            break
+    header = [name.strip() for name in next(csv.reader([header_line], delimiter=delimiter))]
+    if any(_looks_numeric(name) for name in header):
+        raise ValueError(f"{path}: the first row {header_line!r} is not a header row (it holds numbers)")
+    if len(set(header)) != len(header):
+        raise ValueError(f"{path}: repeated column names in the header {header}")
+    if len(lines) < 2:
+        raise ValueError(f"{path}: the CSV file has a header but no data rows")
+    try:
+        table = np.loadtxt(
+            io.StringIO(text), delimiter=delimiter, skiprows=1, dtype=np.float64, ndmin=2, comments=None
+        )
+    except ValueError as error:
+        raise ValueError(f"{path}: unreadable CSV data ({error})") from None
+    if table.shape[1] != len(header):
+        raise ValueError(f"{path}: {table.shape[1]} data columns but {len(header)} header names")
+    return {name: table[:, i] for i, name in enumerate(header)}
+
+
+def _looks_numeric(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def load_recording(
+    path: str | Path,
+    *,
+    columns: Mapping[str, str] | None = None,
+    sample_rate: float | None = None,
+    units: str = "rad/s",
+    irregular: str = "refuse",
+) -> Recording:
+    """Read a CSV (with a header row) or NPZ recording; the file is opened read-only.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.csv`` (comma, semicolon or tab separated) or ``.npz`` file.
+    columns : mapping, optional
+        Our name → the file's name. Keys ``"time"``, ``"temperature"`` and ``"angle"`` are special; every
+        other key names a gyro column. Without it: the time is the column ``t``/``time``, temperature
+        ``temp``/``temperature``, angle ``phi``/``angle``, and the gyros every column whose name starts
+        with ``w``, ``gyro`` or ``omega``.
+    sample_rate : float, optional
+        Needed when there is no time column (an NPZ's ``fs`` entry is used when present).
+    units : {"rad/s", "deg/s", "deg/h"}
+        Units of the gyro columns in the file.
+    irregular : {"refuse", "keep"}
+        What to do with gaps or non-uniform timestamps.
+    """
+    if not isinstance(path, (str, Path)):
+        raise TypeError(f"path={path!r}: must be a str or pathlib.Path")
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such file")
+    if path.is_dir():
+        raise ValueError(f"{path}: is a directory, not a recording file")
+    if path.stat().st_size == 0:
+        raise ValueError(f"{path}: empty file")
+    suffix = path.suffix.lower()
+    if suffix == ".npz":
+        table = _read_npz(path)
+    elif suffix in (".csv", ".txt"):
+        table = _read_csv(path)
+    else:
+        raise ValueError(f"{path}: unknown extension {path.suffix!r}; must be .csv or .npz")
+    names = list(table)
+    if columns is not None:
+        if not isinstance(columns, Mapping):
+            raise TypeError(f"columns={columns!r}: must be a mapping of our name to the file's column name")
+        missing = [file_name for file_name in columns.values() if file_name not in table]
+        if missing:
+            raise ValueError(f"{path}: columns {missing} not found; the file has {names}")
+        time_name = columns.get("time")
+        temperature_name = columns.get("temperature")
+        angle_name = columns.get("angle")
+        rate_names = {
+            ours: theirs for ours, theirs in columns.items() if ours not in ("time", "temperature", "angle")
+        }
+        if time_name is None and "time" not in columns:
+            time_name = _pick(names, _TIME_NAMES)
+    else:
+        time_name = _pick(names, _TIME_NAMES)
+        temperature_name = _pick(names, _TEMPERATURE_NAMES)
+        angle_name = _pick(names, _ANGLE_NAMES)
+        rate_names = {name: name for name in names if _is_rate_name(name) and np.ndim(table[name]) == 1}
+    if not rate_names:
+        raise ValueError(f"{path}: no gyro columns found among {names}; name them with columns={{'wx': ...}}")
+    if sample_rate is None and "fs" in table and np.size(table["fs"]) == 1:
+        sample_rate = float(np.asarray(table["fs"]).reshape(()))
+        if not (math.isfinite(sample_rate) and sample_rate > 0):
+            raise ValueError(f"{path}: the 'fs' entry {sample_rate!r} is not a positive sample rate")
+    return recording_from_arrays(
+        {ours: table[theirs] for ours, theirs in rate_names.items()},
+        time=None if time_name is None else table[time_name],
+        sample_rate=sample_rate,
+        temperature=None if temperature_name is None else table[temperature_name],
+        angle=None if angle_name is None else table[angle_name],
+        units=units,
+        source=str(path),
+        irregular=irregular,
+    )
