@@ -1,0 +1,157 @@
+"""``carousel-theory formula``: list the named closed forms, or evaluate one exactly or at any precision.
+
+    carousel-theory formula --list [--json]
+    carousel-theory formula NAME --set KEY=VALUE ... [--exact | --digits D] [--json]
+
+Values given to ``--set`` are read exactly: integers (``200``, ``1e6``), fractions (``1/2``) and
+decimals (``0.3`` is 3/10, not the nearest float). Without ``--exact`` the command prints the
+exact value (when the formula has a closed form) and the value to ``--digits`` significant digits
+(default 50, the package's working precision for checks). With ``--json`` it prints one object:
+``name``, ``parameters`` (strings), ``exact`` (SymPy string, or null), ``value`` (decimal string
+with ``digits`` significant digits), ``digits``, ``source``.
+
+The 1/f entries have no closed form: their ``exact`` is null unless ``--exact`` is given (for
+``flicker_average_var`` with rational d it is then computed in O(kN) exact rational arithmetic,
+which grows quickly with kN; ``flicker_carousel_var`` has no exact form and ``--exact`` fails).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from typing import Any
+
+import mpmath
+import sympy as sp
+
+from carousel_theory.formulas import FORMULAS, PARAMETER_HELP, formula
+
+DEFAULT_DIGITS = 50
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "formula",
+        help="list the named closed forms, or evaluate one exactly or at any precision",
+        description="Evaluate a named closed form of the theory (σ² = 1, bins numbered from 1). "
+        "Values for --set are read exactly: 200, 1e6, 1/2, 0.3 (= 3/10).",
+    )
+    parser.add_argument("name", nargs="?", metavar="NAME", help="formula name (see --list)")
+    parser.add_argument("--list", action="store_true", help="list every formula with its parameters")
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        dest="assignments",
+        help="a parameter value, e.g. --set N=200 --set rho=1/2 (repeat for each parameter)",
+    )
+    precision = parser.add_mutually_exclusive_group()
+    precision.add_argument("--exact", action="store_true", help="print only the exact value (fail if none)")
+    precision.add_argument(
+        "--digits",
+        type=int,
+        default=DEFAULT_DIGITS,
+        metavar="D",
+        help=f"significant digits of the decimal value (default {DEFAULT_DIGITS})",
+    )
+    parser.add_argument("--json", action="store_true", help="print one JSON object instead of text")
+    parser.set_defaults(handler=run)
+
+
+def parse_exact_number(key: str, text: str) -> sp.Rational:
+    """``200`` → 200, ``1/2`` → 1/2, ``0.3`` → 3/10, ``1e6`` → 10⁶; anything else is a ValueError."""
+    try:
+        value = sp.Rational(text.strip())
+    except (TypeError, ValueError, SyntaxError):
+        raise ValueError(
+            f"--set {key}={text!r}: must be an integer, a fraction like 1/2 or a decimal like 0.3"
+        ) from None
+    return value
+
+
+def parse_assignments(assignments: list[str]) -> dict[str, sp.Rational]:
+    values: dict[str, sp.Rational] = {}
+    for assignment in assignments:
+        key, separator, text = assignment.partition("=")
+        key = key.strip()
+        if not separator or not key:
+            raise ValueError(f"--set {assignment!r}: must have the form KEY=VALUE")
+        if key in values:
+            raise ValueError(f"--set {key}: given twice")
+        values[key] = parse_exact_number(key, text)
+    return values
+
+
+def format_value(value: mpmath.mpf, digits: int) -> str:
+    """A decimal string with ``digits`` significant digits (trailing zeros kept)."""
+    return mpmath.nstr(value, digits, strip_zeros=False)
+
+
+def _listing(as_json: bool) -> str:
+    if as_json:
+        entries = [
+            {
+                "name": entry.name,
+                "parameters": list(entry.parameters),
+                "closed_form": entry.expression is not None,
+                "source": entry.source,
+                "assumptions": entry.assumptions,
+                "description": entry.description,
+                "latex": entry.latex(),
+            }
+            for entry in FORMULAS.values()
+        ]
+        return json.dumps(entries, indent=2, ensure_ascii=False)
+    width = max(len(name) for name in FORMULAS)
+    lines = []
+    for entry in FORMULAS.values():
+        lines.append(f"{entry.name:<{width}}  ({', '.join(entry.parameters)})  {entry.source}")
+        lines.append(f"{'':<{width}}  {entry.description}")
+    lines.append("")
+    lines.append("parameters: " + "; ".join(f"{key}: {text}" for key, text in PARAMETER_HELP.items()))
+    return "\n".join(lines)
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.list:
+        if args.name or args.assignments:
+            raise ValueError("--list takes no NAME and no --set")
+        print(_listing(args.json))
+        return 0
+    if not args.name:
+        raise ValueError("NAME is required (or --list); see `carousel-theory formula --list`")
+    entry = formula(args.name)
+    values = parse_assignments(args.assignments)
+    digits = args.digits
+    if digits < 1:
+        raise ValueError(f"--digits={digits}: must be an integer >= 1")
+    exact: sp.Expr | None = None
+    if entry.expression is not None or args.exact:
+        exact = entry.exact(**values)  # raises ValueError when no exact form exists
+    if args.exact:
+        exact_value = exact
+        assert exact_value is not None
+        value = format_value(mpmath.mpf(str(sp.N(exact_value, DEFAULT_DIGITS + 10))), DEFAULT_DIGITS)
+        digits = DEFAULT_DIGITS
+    else:
+        value = format_value(entry.evaluate(digits=digits, **values), digits)
+    if args.json:
+        result: dict[str, Any] = {
+            "name": entry.name,
+            "parameters": {key: str(values[key]) for key in entry.parameters},
+            "exact": None if exact is None else str(exact),
+            "value": value,
+            "digits": digits,
+            "source": entry.source,
+        }
+        print(json.dumps(result, ensure_ascii=False))
+        return 0
+    call = f"{entry.name}({', '.join(f'{key}={values[key]}' for key in entry.parameters)})"
+    if args.exact:
+        print(f"{call} = {exact}")
+        return 0
+    if exact is not None:
+        print(f"{call} = {exact}")
+    print(f"{call} ≈ {value}")
+    return 0

@@ -1,0 +1,451 @@
+"""The registry of named closed forms: expression, assumptions, source equation and evaluators.
+
+>>> from carousel_theory.formulas import formula
+>>> formula("rrw_average_var").exact(N=2, k=2)
+13/4
+
+Every entry is a :class:`Formula`. Unit driving variance throughout (σ_q² = σ_WN² = σ_w² = 1:
+multiply by it), bins numbered from 1. The SymPy expressions live in
+:mod:`carousel_theory.closed_forms`; the two 1/f entries have no closed form (``expression`` is
+None) and delegate to :mod:`carousel_theory.propagation`.
+"""
+
+from __future__ import annotations
+
+import numbers
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+import mpmath
+import numpy as np
+import sympy as sp
+
+from carousel_theory import closed_forms as cf
+from carousel_theory import symbols
+from carousel_theory._validation import (
+    check_correlation,
+    check_fractional_order,
+    check_positive_integer,
+    check_positive_real,
+    check_real,
+)
+
+__all__ = ["FORMULAS", "PARAMETER_HELP", "Formula", "formula"]
+
+# --------------------------------------------------------------------------------------------
+# Parameters: one rule per name, shared by every formula
+# --------------------------------------------------------------------------------------------
+
+_BIN_PARAMETERS = ("a", "b", "k")
+#: What each parameter means (shown by ``carousel-theory formula --list``).
+PARAMETER_HELP = {
+    "N": "samples per bin (carouseling revolution), an integer",
+    "a": "first bin number, an integer >= 1",
+    "b": "second bin number, an integer >= 1",
+    "k": "bin number, an integer >= 1",
+    "rho": "correlation of the two gyros' RRW increments, in [-1, 1]",
+    "var_x": "white-noise variance of the x gyro, >= 0",
+    "var_y": "white-noise variance of the y gyro, >= 0",
+    "d": "degree of fractional integration, 0 < d < 1",
+}
+
+
+def _check_scalar(name: str, value: Any, minimum_samples: int) -> Any:
+    if name == "N":
+        return check_positive_integer("N", value, minimum=minimum_samples)
+    if name in _BIN_PARAMETERS:
+        return check_positive_integer(name, value)
+    if name == "rho":
+        return check_correlation("rho", value)
+    if name in ("var_x", "var_y"):
+        return check_positive_real(name, value, allow_zero=True)
+    if name == "d":
+        return check_fractional_order("d", value)
+    raise AssertionError(f"no rule for parameter {name!r}")  # pragma: no cover - registry is fixed
+
+
+def _to_sympy_exact(name: str, value: Any) -> sp.Expr:
+    """An exact SymPy number for an exact input; TypeError for a float (its value is not exact)."""
+    if isinstance(value, sp.Rational):
+        return value
+    if isinstance(value, numbers.Integral):
+        return sp.Integer(int(value))
+    if isinstance(value, Fraction):
+        return sp.Rational(value.numerator, value.denominator)
+    raise TypeError(
+        f"{name}={value!r}: must be exact (int, fractions.Fraction or sympy Rational) for exact(); "
+        "use evaluate() or numeric() for floats"
+    )
+
+
+def _to_sympy_any(name: str, value: Any) -> sp.Expr:
+    """Exact inputs stay exact; a float or mpf is taken at its exact binary value."""
+    if isinstance(value, (sp.Rational, numbers.Integral, Fraction)):
+        return _to_sympy_exact(name, value)
+    if isinstance(value, mpmath.mpf):
+        mantissa, exponent = value.man_exp
+        return sp.Integer(int(mantissa)) * sp.Integer(2) ** int(exponent)
+    if isinstance(value, sp.Basic):
+        return sp.nsimplify(value, rational=True)
+    return sp.Rational(float(value))
+
+
+def _check_array(name: str, value: Any, minimum_samples: int) -> np.ndarray:
+    """Array form of :func:`_check_scalar` for ``numeric``: integer dtypes for N and bins."""
+    if np.ndim(value) == 0:
+        if name == "N" or name in _BIN_PARAMETERS:
+            return np.asarray(float(_check_scalar(name, value, minimum_samples)))
+        return np.asarray(float(_check_scalar(name, value, minimum_samples)), dtype=np.float64)
+    array = np.asarray(value)
+    if name == "N" or name in _BIN_PARAMETERS:
+        if array.dtype.kind not in "iu":
+            raise TypeError(f"{name}={value!r}: must be an integer array (dtype {array.dtype} given)")
+        minimum = minimum_samples if name == "N" else 1
+        if array.size and array.min() < minimum:
+            bad = array.flat[int(np.argmin(array))].item()
+            raise ValueError(f"{name}={bad!r}: must be an integer >= {minimum}")
+        return array.astype(np.float64)  # float64: (N + 1)(2N + 1) would overflow int64 for N > 2·10⁹
+    if array.dtype.kind not in "iuf":
+        raise TypeError(f"{name}={value!r}: must be an array of real numbers")
+    floats = array.astype(np.float64)
+    for element in floats.flat:  # NaN, range: the scalar rules, element by element
+        check_real(name, float(element))
+        _check_scalar(name, float(element), minimum_samples)
+    return floats
+
+
+# --------------------------------------------------------------------------------------------
+# The Formula
+# --------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Formula:
+    """A named closed form with its evaluators.
+
+    ``expression`` is a SymPy expression in the symbols of :mod:`carousel_theory.symbols` (or None
+    when there is no closed form; then ``delegate_float``/``delegate_mp`` compute the value and
+    ``delegate_exact``, if given, an exact one). ``minimum_samples`` is the smallest N the formula is
+    valid for.
+    """
+
+    name: str
+    parameters: tuple[str, ...]
+    expression: sp.Expr | None
+    assumptions: str
+    source: str
+    description: str
+    minimum_samples: int = 1
+    latex_text: str | None = None
+    delegate_float: Callable[..., float] | None = field(default=None, repr=False, compare=False)
+    delegate_mp: Callable[..., Any] | None = field(default=None, repr=False, compare=False)
+    delegate_exact: Callable[..., Any] | None = field(default=None, repr=False, compare=False)
+
+    # -- argument handling --------------------------------------------------------------------
+
+    def _checked(self, values: dict[str, Any]) -> dict[str, Any]:
+        missing = [p for p in self.parameters if p not in values]
+        unknown = sorted(set(values) - set(self.parameters))
+        if unknown:
+            raise TypeError(
+                f"{self.name}: unknown parameter(s) {unknown}; parameters are {list(self.parameters)}"
+            )
+        if missing:
+            raise TypeError(
+                f"{self.name}: missing parameter(s) {missing}; parameters are {list(self.parameters)}"
+            )
+        if self.minimum_samples > 1 and "N" in values:
+            n = check_positive_integer("N", values["N"])
+            if n < self.minimum_samples:
+                raise ValueError(
+                    f"N={values['N']!r}: must be an integer >= {self.minimum_samples} for {self.name} "
+                    "(at N = 1 nothing is carouselled and the bin variance depends on the bin: "
+                    "use rrw_carousel_cov)"
+                )
+        return {p: _check_scalar(p, values[p], self.minimum_samples) for p in self.parameters}
+
+    def _substitute(self, converted: dict[str, sp.Expr]) -> sp.Expr:
+        assert self.expression is not None
+        mapping = {getattr(symbols, p): converted[p] for p in self.parameters}
+        return self.expression.subs(mapping)
+
+    # -- evaluators -----------------------------------------------------------------------------
+
+    def exact(self, **values: Any) -> sp.Expr:
+        """The exact SymPy value for exact inputs (int, Fraction, sympy Rational).
+
+        Raises ValueError when no exact form exists, TypeError for a float input.
+        """
+        checked = self._checked(values)
+        converted = {p: _to_sympy_exact(p, v) for p, v in checked.items()}
+        if self.expression is None:
+            if self.delegate_exact is None:
+                raise ValueError(f"{self.name}: no exact form (use evaluate() at any precision)")
+            return sp.nsimplify(self.delegate_exact(**{p: _as_python(v) for p, v in converted.items()}))
+        return self._substitute(converted)
+
+    def evaluate(self, digits: int = 50, **values: Any) -> mpmath.mpf:
+        """The value as an ``mpmath.mpf`` correct to ``digits`` significant digits."""
+        digits = check_positive_integer("digits", digits)
+        checked = self._checked(values)
+        if self.expression is None:
+            assert self.delegate_mp is not None
+            with mpmath.workdps(digits):
+                return +self.delegate_mp(**checked, digits=digits)
+        converted = {p: _to_sympy_any(p, v) for p, v in checked.items()}
+        value = self._substitute(converted)
+        decimal = sp.Float(value.evalf(digits + 10), digits + 10)  # evalf tracks its own error
+        with mpmath.workdps(digits):
+            return mpmath.mpf(str(decimal))
+
+    def numeric(self, **values: Any) -> Any:
+        """float64 value; broadcasts over array arguments like a NumPy ufunc."""
+        missing = [p for p in self.parameters if p not in values]
+        unknown = sorted(set(values) - set(self.parameters))
+        if unknown or missing:
+            self._checked(values)  # raises the TypeError naming them
+        checked = [_check_array(p, values[p], self.minimum_samples) for p in self.parameters]
+        arrays = np.broadcast_arrays(*checked)
+        scalar = all(np.ndim(values[p]) == 0 for p in self.parameters)
+        if self.expression is None:
+            assert self.delegate_float is not None
+            result = np.vectorize(self._float_delegate_call, otypes=[np.float64])(*arrays)
+        else:
+            result = np.asarray(_lambdified(self.name, self)(*arrays), dtype=np.float64)
+            result = np.broadcast_to(result, arrays[0].shape if arrays else ()).copy()
+        return float(result) if scalar else result
+
+    def _float_delegate_call(self, *arguments: float) -> float:
+        assert self.delegate_float is not None
+        named = dict(zip(self.parameters, arguments, strict=True))
+        for p in ("N", *_BIN_PARAMETERS):
+            if p in named:
+                named[p] = int(named[p])
+        return float(self.delegate_float(**named))
+
+    def latex(self) -> str:
+        """The formula in LaTeX (the defining expression when there is no closed form)."""
+        if self.expression is None:
+            assert self.latex_text is not None
+            return self.latex_text
+        return sp.latex(self.expression)
+
+
+def _as_python(value: sp.Expr) -> Any:
+    """SymPy Integer → int, Rational → Fraction (what the numeric modules accept)."""
+    if value.is_Integer:
+        return int(value)
+    return Fraction(int(value.p), int(value.q))
+
+
+_LAMBDIFIED: dict[str, Callable[..., Any]] = {}
+
+
+def _lambdified(name: str, entry: Formula) -> Callable[..., Any]:
+    if name not in _LAMBDIFIED:
+        arguments = [getattr(symbols, p) for p in entry.parameters]
+        _LAMBDIFIED[name] = sp.lambdify(arguments, entry.expression, "numpy")
+    return _LAMBDIFIED[name]
+
+
+# --------------------------------------------------------------------------------------------
+# 1/f noise: no closed form; delegate to carousel_theory.propagation (imported when first used)
+# --------------------------------------------------------------------------------------------
+
+
+def _flicker_averaged_float(d: Any, N: int, k: int) -> float:
+    from carousel_theory.propagation import flicker_averaged_bin_variance
+
+    return float(flicker_averaged_bin_variance(d, N, k))
+
+
+def _flicker_averaged_mp(d: Any, N: int, k: int, digits: int) -> Any:
+    from carousel_theory.propagation import flicker_averaged_bin_variance
+
+    return flicker_averaged_bin_variance(d, N, k, digits=digits)
+
+
+def _flicker_averaged_exact(d: Any, N: int, k: int) -> Fraction:
+    from carousel_theory.propagation import flicker_averaged_bin_variance_exact
+
+    return flicker_averaged_bin_variance_exact(Fraction(d), N, k)
+
+
+def _flicker_carouselled_float(d: Any, N: int, k: int) -> float:
+    from carousel_theory.propagation import flicker_carouselled_bin_variance
+
+    return float(flicker_carouselled_bin_variance(d, N, k))
+
+
+def _flicker_carouselled_mp(d: Any, N: int, k: int, digits: int) -> Any:
+    from carousel_theory.propagation import flicker_carouselled_bin_variance
+
+    return flicker_carouselled_bin_variance(d, N, k, digits=digits)
+
+
+# --------------------------------------------------------------------------------------------
+# The registry
+# --------------------------------------------------------------------------------------------
+
+_RRW = "RRW r_t = r_{t-1} + q_t from r_0 = 0 (TIM 2014 eq. (2)), unit increment variance σ_q² = 1"
+_CAROUSEL = (
+    "uniform carouseling, N samples per revolution, weights sin(2πi/N)/N and cos(2πi/N)/N, "
+    "i = 1..N (TIM 2014 eq. (13)); estimate −Σ s_i ω_x + Σ c_i ω_y (eq. (6))"
+)
+_INDEPENDENT = "the two gyros' increments independent and identically distributed (TIM 2014 §III-C)"
+_N1 = (
+    "N >= 2: at N = 1 the single cosine weight is cos 2π = 1, nothing is carouselled and the bin "
+    "variance depends on the bin (see rrw_carousel_cov)"
+)
+
+_ENTRIES = [
+    Formula(
+        "bias_carousel_residual",
+        ("N",),
+        cf.BIAS_CAROUSEL_RESIDUAL,
+        f"unit additive biases b_x = b_y = 1 (TIM 2014 eq. (1)); {_CAROUSEL}",
+        "TIM 2014 eq. (8), both gyros, exact for every N",
+        "What a unit bias on each gyro leaves in the carouselled estimate: 0 for N >= 2, 1 at N = 1.",
+    ),
+    Formula(
+        "bias_carousel_residual_cos",
+        ("N",),
+        cf.BIAS_COSINE_RESIDUAL,
+        f"unit additive bias; {_CAROUSEL}",
+        "TIM 2014 eq. (8), cosine companion, exact for every N",
+        "(1/N) Σ_{i=1}^{N} cos(2πi/N): the sum of the N-th roots of unity over N, 1 at N = 1, else 0.",
+    ),
+    Formula(
+        "bias_carousel_residual_sin",
+        ("N",),
+        cf.BIAS_SINE_RESIDUAL,
+        f"unit additive bias; {_CAROUSEL}",
+        "TIM 2014 eq. (8), exact for every N",
+        "(1/N) Σ_{i=1}^{N} sin(2πi/N): zero for every N >= 1 (N = 1 included, sin 2π = 0).",
+    ),
+    Formula(
+        "flicker_average_var",
+        ("d", "N", "k"),
+        None,
+        "1/f noise as fractional integration of unit-variance white noise from t = 1 (TIM 2014 eq. (3)), "
+        "0 < d < 1",
+        "TIM 2014 eq. (3) and §III-D, 1ᵀF_kF_kᵀ1 for the k-th bin",
+        "Variance of the k-th N-sample mean of 1/f noise; exact (Rational) for rational d, no closed form.",
+        latex_text=r"\frac{1}{N^2}\sum_{j=0}^{kN-1}\left(\Psi_j-\Psi_{j-N}\right)^2,\quad "
+        r"\Psi_j=\sum_{l=0}^{j}\frac{\Gamma(l+d)}{\Gamma(l+1)\Gamma(d)}",
+        delegate_float=_flicker_averaged_float,
+        delegate_mp=_flicker_averaged_mp,
+        delegate_exact=_flicker_averaged_exact,
+    ),
+    Formula(
+        "flicker_carousel_var",
+        ("d", "N", "k"),
+        None,
+        f"1/f noise of TIM 2014 eq. (3), unit σ_w², 0 < d < 1; {_CAROUSEL}; the gyros' noises independent",
+        "TIM 2014 eq. (3), (16) and §III-D, sᵀF_kF_kᵀs + cᵀF_kF_kᵀc for the k-th bin",
+        "Variance of the k-th carouselled estimate of 1/f noise; no closed form (evaluate at any precision).",
+        latex_text=r"\sum_{j}\left(\sum_{u}s_u\psi_{u-N+j}\right)^2+\left(\sum_{u}c_u\psi_{u-N+j}\right)^2",
+        delegate_float=_flicker_carouselled_float,
+        delegate_mp=_flicker_carouselled_mp,
+    ),
+    Formula(
+        "rrw_average_cov",
+        ("N", "a", "b"),
+        cf.RRW_AVERAGE_COVARIANCE,
+        f"{_RRW}; plain N-sample means, bins a, b >= 1",
+        "TIM 2014 eq. (15), generalised to any pair of bins, exact finite-N form",
+        "Covariance of the a-th and b-th N-sample means of RRW.",
+    ),
+    Formula(
+        "rrw_average_var",
+        ("N", "k"),
+        cf.RRW_AVERAGE_VARIANCE,
+        f"{_RRW}; plain N-sample means, bin k >= 1",
+        "TIM 2014 eq. (15) diagonal, every bin, exact finite-N form",
+        "Variance of the k-th N-sample mean of RRW: exactly N more than that of bin k − 1.",
+    ),
+    Formula(
+        "rrw_carousel_cov",
+        ("N", "a", "b"),
+        cf.RRW_CAROUSEL_COVARIANCE,
+        f"{_RRW}; {_CAROUSEL}; {_INDEPENDENT}",
+        "TIM 2014 eq. (16)-(17), generalised to any pair of bins, exact finite-N form",
+        "Covariance of the a-th and b-th carouselled estimates: zero for a ≠ b when N >= 2.",
+    ),
+    Formula(
+        "rrw_carousel_cross",
+        ("N",),
+        cf.RRW_CAROUSEL_CROSS,
+        f"{_RRW}; {_CAROUSEL}",
+        "TIM 2014 eq. (16)-(18), sᵀRRᵀc, exact finite-N form",
+        "The sine–cosine cross term sᵀRRᵀc = −cot(π/N)/(4N) for N >= 3 (0 for N <= 2), tending to −1/(4π).",
+    ),
+    Formula(
+        "rrw_carousel_var",
+        ("N",),
+        cf.RRW_CAROUSEL_VARIANCE,
+        f"{_RRW}; {_CAROUSEL}; {_INDEPENDENT}; {_N1}",
+        "TIM 2014 eq. (17)-(18), sᵀRRᵀs + cᵀRRᵀc, exact finite-N form",
+        "Variance of every carouselled bin: csc²(π/N)/(2N) for N >= 3 (1/4 at N = 2) ~ N/(2π²).",
+        minimum_samples=2,
+    ),
+    Formula(
+        "rrw_carousel_var_correlated",
+        ("N", "rho"),
+        cf.RRW_CAROUSEL_VARIANCE_CORRELATED,
+        f"{_RRW}; {_CAROUSEL}; the two gyros' increments at equal times correlated with coefficient rho, "
+        f"independent at different times; {_N1}",
+        "TIM 2014 eq. (16) without the independence assumption, exact finite-N form",
+        "Variance of every carouselled bin with correlated increments: sᵀRRᵀs + cᵀRRᵀc − 2ρ sᵀRRᵀc.",
+        minimum_samples=2,
+    ),
+    Formula(
+        "rrw_carousel_var_cos",
+        ("N",),
+        cf.RRW_CAROUSEL_COSINE_VARIANCE,
+        f"{_RRW}; {_CAROUSEL}; {_N1}",
+        "TIM 2014 eq. (18) cosine term, cᵀRRᵀc, exact finite-N form",
+        "cᵀRRᵀc = (csc²(π/N) + 2)/(8N) for N >= 3 (1/4 at N = 2) ~ N/(8π²).",
+        minimum_samples=2,
+    ),
+    Formula(
+        "rrw_carousel_var_sin",
+        ("N",),
+        cf.RRW_CAROUSEL_SINE_VARIANCE,
+        f"{_RRW}; {_CAROUSEL}",
+        "TIM 2014 eq. (17)-(18), sᵀRRᵀs, exact finite-N form",
+        "sᵀRRᵀs = (3 csc²(π/N) − 2)/(8N) for N >= 3 (0 for N <= 2) ~ 3N/(8π²).",
+    ),
+    Formula(
+        "white_average_var",
+        ("N",),
+        cf.WHITE_AVERAGE_VARIANCE,
+        "white noise of unit variance",
+        "TIM 2014 §III-B (direct averaging)",
+        "Variance of the mean of N white samples: 1/N.",
+    ),
+    Formula(
+        "white_carousel_var",
+        ("N", "var_x", "var_y"),
+        cf.WHITE_CAROUSEL_VARIANCE,
+        f"independent white noise of variances var_x (x gyro) and var_y (y gyro); {_CAROUSEL}",
+        "TIM 2014 eq. (9), generalised to unequal variances, exact for every N",
+        "Variance of the carouselled estimate: (var_x + var_y)/(2N) for N >= 3, var_y/2 at N = 2, "
+        "var_y at N = 1.",
+    ),
+]
+
+#: Every formula, by name, sorted by name.
+FORMULAS: dict[str, Formula] = {entry.name: entry for entry in sorted(_ENTRIES, key=lambda e: e.name)}
+
+
+def formula(name: str) -> Formula:
+    """The formula called ``name``; ValueError naming the unknown name and listing the known ones."""
+    if not isinstance(name, str):
+        raise TypeError(f"name={name!r}: must be a string")
+    try:
+        return FORMULAS[name]
+    except KeyError:
+        raise ValueError(f"name={name!r}: no such formula; known: {', '.join(FORMULAS)}") from None
