@@ -1,0 +1,163 @@
+"""The claims registry is well-formed, its checks decide, and ``carousel-theory check --check`` refuses a
+stale file; plus two-way checks of the numbers the experiment claims of TIM 2014 compute."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import mpmath
+import pytest
+import sympy as sp
+
+from carousel_theory.claim import PAPERS, Claim, Status, Verdict
+from carousel_theory.claims import all_claims
+from carousel_theory.claims import tim2014_experiments as experiments
+from carousel_theory.claims import tim2014_renderings as renderings
+from carousel_theory.cli import main
+
+FAST_MODULES = (experiments, renderings)
+
+
+# --- the registry ---------------------------------------------------------------------------------
+
+
+def test_every_claim_is_well_formed_and_ids_are_unique():
+    claims = all_claims()  # refuses duplicate ids itself
+    ids = [claim.id for claim in claims]
+    assert len(ids) == len(set(ids))
+    assert ids == sorted(ids)
+    for claim in claims:
+        assert isinstance(claim, Claim)
+        assert claim.paper in PAPERS
+        assert claim.id.startswith(claim.paper + "-")
+        assert claim.location.strip() and claim.statement.strip(), claim.id
+        assert callable(claim.check)
+
+
+def test_claim_refuses_an_unknown_paper_and_a_mismatched_id():
+    with pytest.raises(ValueError, match="paper='IEEE1999'"):
+        Claim("IEEE1999-x", "IEEE1999", "§I", "a claim", lambda: Verdict(Status.VERIFIED, ""))
+    with pytest.raises(ValueError, match="must start with the paper key"):
+        Claim("SJ2012-x", "TIM2014", "§I", "a claim", lambda: Verdict(Status.VERIFIED, ""))
+
+
+@pytest.mark.parametrize(
+    "claim", [claim for module in FAST_MODULES for claim in module.CLAIMS], ids=lambda claim: claim.id
+)
+def test_fast_claims_decide(claim):
+    verdict = claim.check()
+    assert isinstance(verdict, Verdict)
+    assert isinstance(verdict.status, Status)
+    assert verdict.status is not Status.FAILED, verdict.evidence
+    assert verdict.evidence.strip()
+    # An erratum carries its corrected form; nothing else needs one.
+    assert (verdict.corrected is not None) == (verdict.status is Status.ERRATUM), claim.id
+    # Deterministic evidence: the same text on a second run.
+    assert claim.check() == verdict
+
+
+@pytest.mark.slow
+def test_every_claim_of_the_registry_decides():
+    from carousel_theory.report import run_checks
+
+    failed = [
+        f"{item.claim.id}: {item.verdict.evidence}"
+        for item in run_checks(all_claims(), show_progress=False)
+        if not isinstance(item.verdict, Verdict) or item.verdict.status is Status.FAILED
+    ]
+    assert not failed
+
+
+# --- carousel-theory check --check ---------------------------------------------------------------
+
+
+@pytest.fixture
+def few_claims(monkeypatch):
+    """Run the command on three fast claims instead of the whole registry."""
+    chosen = [c for c in renderings.CLAIMS if c.id.endswith(("table3", "wording", "algorithm1-loop"))]
+    assert len(chosen) == 3
+    monkeypatch.setattr("carousel_theory.cli.check.all_claims", lambda: chosen)
+    return chosen
+
+
+def test_check_mode_accepts_fresh_files_and_refuses_stale_ones(tmp_path, few_claims, capsys):
+    assert main(["check", "--out", str(tmp_path)]) == 0
+    markdown, json_file = tmp_path / "paper_check.md", tmp_path / "paper_check.json"
+    assert markdown.exists() and json_file.exists()
+    assert main(["check", "--check", "--out", str(tmp_path)]) == 0
+    stale = markdown.read_text(encoding="utf-8").replace("verified", "proved", 1)
+    markdown.write_text(stale, encoding="utf-8")
+    capsys.readouterr()
+    assert main(["check", "--check", "--out", str(tmp_path)]) == 1
+    assert "out of date" in capsys.readouterr().out
+    # --check writes nothing: the stale file is left as it was.
+    assert markdown.read_text(encoding="utf-8") == stale
+
+
+def test_check_mode_refuses_a_missing_file_and_a_status_regression(tmp_path, few_claims, capsys):
+    assert main(["check", "--check", "--out", str(tmp_path)]) == 1  # nothing written yet
+    assert main(["check", "--out", str(tmp_path)]) == 0
+    json_file = tmp_path / "paper_check.json"
+    json_file.write_text(
+        json_file.read_text(encoding="utf-8").replace('"status": "verified"', '"status": "proved"'),
+        encoding="utf-8",
+    )
+    capsys.readouterr()
+    assert main(["check", "--check", "--out", str(tmp_path)]) == 1
+    assert "proved -> verified" in capsys.readouterr().out
+
+
+# --- two-way checks of the numbers behind the experiment claims -----------------------------------
+
+
+def test_integrated_rrw_sum_matches_a_brute_force_sum_of_min():
+    """Σ_{a,b} Cov(bin a, bin b) from the registry equals Σ_{s,t ≤ KN} min(s, t) / N² exactly."""
+    total, N, K = experiments._averaged_rrw_sum_of_covariances()
+    for samples in (1, 2, 3, 5):
+        for bins in (1, 2, 3, 4):
+            length = samples * bins
+            brute = Fraction(
+                sum(min(s, t) for s in range(1, length + 1) for t in range(1, length + 1)), samples**2
+            )
+            assert total.subs({N: samples, K: bins}) == sp.Rational(brute.numerator, brute.denominator)
+
+
+def test_integrated_rrw_sum_has_the_continuous_limit():
+    # Σ_{s,t ≤ M} min(s, t) = M(M + 1)(2M + 1)/6: the integrated RRW has variance σ_q² t³/3 in the limit.
+    total, N, K = experiments._averaged_rrw_sum_of_covariances()
+    M = K * N
+    assert sp.simplify(total - M * (M + 1) * (2 * M + 1) / (6 * N**2)) == 0
+
+
+def test_angle_standard_deviations_against_the_continuous_formulas():
+    """σ² of the angle after t: white σ_WN² t (ARW) and RRW σ_q² t³/3, up to the O(1/M) discretisation."""
+    sigma = experiments._angle_standard_deviations()
+    t = experiments.DURATION
+    for gyro in ("x", "y"):
+        parameters = experiments.TABLE_III[gyro]
+        white = mpmath.sqrt(mpmath.mpf(parameters["white"].numerator) / parameters["white"].denominator * t)
+        rrw = mpmath.sqrt(mpmath.mpf(parameters["rrw"].numerator) / parameters["rrw"].denominator * t**3 / 3)
+        assert abs(sigma[f"averaged {gyro}"]["white"] / white - 1) < 1e-12
+        assert abs(sigma[f"averaged {gyro}"]["rrw"] / rrw - 1) < 1e-5
+    # Carouselled white noise: each sample contributes (Δt)²(σx² sin² + σy² cos²), summing to the mean ARW.
+    white_mean = (experiments.TABLE_III["x"]["white"] + experiments.TABLE_III["y"]["white"]) / 2
+    expected = mpmath.sqrt(mpmath.mpf(white_mean.numerator) / white_mean.denominator * t)
+    assert abs(sigma["carouselled"]["white"] / expected - 1) < 1e-12
+
+
+def test_binomial_interval_against_scipy():
+    scipy_stats = pytest.importorskip("scipy.stats")
+    with mpmath.workdps(30):
+        probability = mpmath.erfc(mpmath.sqrt(2))
+        lowest, highest = experiments._binomial_interval(1800, probability, mpmath.mpf("0.99"))
+        tail = experiments._binomial_tail_at_least(117, 1800, probability)
+    reference = scipy_stats.binom(1800, float(probability))
+    assert (lowest, highest) == (int(reference.ppf(0.005)), int(reference.isf(0.005)))
+    assert abs(float(tail) / reference.sf(116) - 1) < 1e-9
+
+
+def test_table_three_constants_match_the_rendering_transcriptions():
+    parsed = [renderings._parse_scientific(cell) for cell in renderings.TABLE_III_ALTERNATIVE]
+    for gyro, column in zip(("x", "y"), parsed, strict=True):
+        parameters = experiments.TABLE_III[gyro]
+        assert column == [parameters["white"], parameters["rrw"], parameters["bias_instability"]]
