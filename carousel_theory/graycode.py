@@ -45,6 +45,7 @@ __all__ = [
     "innovation_index",
     "mvue_variance",
     "mvue_variance_estimate",
+    "overlapping_allan_variance_exact",
     "pseudoinverse",
     "sequence",
     "sequence_coefficients",
@@ -250,6 +251,29 @@ def allan_variance_exact(n: int, m: int, C: Any = 1.0) -> Any:
     m = _check_octave(m, n)
     C = _check_scale(C)
     return _evaluate(ALLAN_VARIANCE, C, n=n, m=m)
+
+
+def overlapping_allan_variance_exact(n: int, m: int, C: Any = 1) -> Any:
+    """E of the fully overlapping Allan variance of R_{2^n} = C K x at τ = 2^m, exactly.
+
+    σ²_overlap(τ) = Σ_{t=0}^{L−1} (ȳ_{t+τ} − ȳ_t)² / (2L), ȳ_t the mean of y_t … y_{t+τ−1},
+    L = 2^n − 2τ + 1. Not constant in τ (TIM 2014 §IV, last paragraph before (32)); computed from
+    prefix sums of each square-wave column, O(2^n n), as a SymPy Rational times C².
+    """
+    n = _check_order(n)
+    m = _check_octave(m, n)
+    C = _check_scale(C)
+    tau = 2**m
+    windows = 2**n - 2 * tau + 1
+    total = 0
+    for i in range(1, n + 1):
+        prefix = np.concatenate(([0], np.cumsum(_twice_column(n, i), dtype=np.int64)))
+        # (sum of 2K over the later window) − (sum over the earlier window)
+        change = prefix[2 * tau :] - 2 * prefix[tau:-tau] + prefix[: -2 * tau]
+        total += int(np.sum(change * change))
+    # a difference of means of K is change / (2τ)
+    expectation_unit = sp.Rational(total, 4 * tau**2 * 2 * windows)
+    return _evaluate(C_symbol**2 * expectation_unit, C)
 
 
 def allan_estimator_variance(n: int, m: int, C: Any = 1.0) -> Any:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from fractions import Fraction
 from functools import cached_property
 
 import numpy as np
@@ -25,6 +26,7 @@ from carousel_theory.graycode import (
     _twice_column,
     deterministic_sequence,
     gray_code,
+    overlapping_allan_variance_exact,
     sequence_coefficients,
 )
 from carousel_theory.progress import progress
@@ -225,26 +227,33 @@ def _overlapping_not_constant(work: _Workspace) -> bool:
         pair = column[:-1] + column[1:]  # int8: sum of a window of two samples of 2K
         change = pair[2:] - pair[:-2]
         total += int(np.sum(change * change, dtype=np.int64))
-    # d_t of K = (pair difference)/4; E σ² = Σ d² / (2L); equal to ½ iff total = 16 L
-    equal = total == 16 * windows
-    return equal if n == 2 else not equal
+    # d_t of K = (pair difference)/4, so E σ² = total / (16 · 2L); the package's prefix-sum
+    # computation must agree, and the value must differ from ½ exactly when n ≥ 3
+    expectation = Fraction(total, 32 * windows)
+    if expectation != overlapping_allan_variance_exact(n, 1):
+        return False
+    return expectation == Fraction(1, 2) if n == 2 else expectation != Fraction(1, 2)
 
 
 def _mcilroy_bounds(work: _Workspace) -> bool:
     """−n/2 ≤ S ≤ n/2 with the minimum only at r = 0 and the maximum only at r = ⌊2^{n+1}/3⌋;
     G(N) = Σ_{r<N} popcount(g(r)) satisfies B(N) ≤ G(N) ≤ B(N) + 2N/5 (B: binary, McIlroy's
-    sum) for every N ≤ 2^n, with G(2^k) = k 2^{k−1}."""
+    sum, itself ≤ (N/2) log₂ N) for every N ≤ 2^n, with G(2^k) = k 2^{k−1}."""
     n = work.n
     s = work.twice_sequence
     minimum = np.flatnonzero(s == -n)
     maximum = np.flatnonzero(s == n)
     if not (s.min() == -n and s.max() == n and list(minimum) == [0] and list(maximum) == [2 ** (n + 1) // 3]):
         return False
-    gray_sums = np.cumsum(work.ones_in_gray, dtype=np.int64)
+    # G from the sequence itself: S_r + n/2 counts the ones of g(r) ("ones-count")
+    gray_sums = np.cumsum((s + n) // 2, dtype=np.int64)
     binary_sums = np.cumsum(np.bitwise_count(work.rows), dtype=np.int64)
     counts = work.rows.astype(np.int64) + 1
     excess = gray_sums - binary_sums
     if not (np.all(excess >= 0) and np.all(5 * excess <= 2 * counts)):
+        return False
+    # McIlroy: B(N) <= (N/2) log2 N, with equality at powers of two (where log2 is exact in float64)
+    if not np.all(2 * binary_sums <= counts * np.log2(counts) * (1 + 1e-12)):
         return False
     return all(int(gray_sums[2**k - 1]) == k * 2 ** (k - 1) for k in range(1, n + 1))
 

@@ -25,6 +25,7 @@ from carousel_theory.graycode import (
     innovation_index,
     mvue_variance,
     mvue_variance_estimate,
+    overlapping_allan_variance_exact,
     pseudoinverse,
     sequence,
     sequence_coefficients,
@@ -349,6 +350,8 @@ INVALID_CALLS = [
     ("mvue-not-power-of-two", lambda: mvue_variance_estimate(np.zeros(6)), ValueError, "power of two"),
     ("mvue-length-two", lambda: mvue_variance_estimate(np.zeros(2)), ValueError, "n=1"),
     ("coefficients-length-zero", lambda: sequence_coefficients(0), ValueError, "length=0"),
+    ("overlapping-m-too-big", lambda: overlapping_allan_variance_exact(3, 3), ValueError, "m=3"),
+    ("overlapping-C-zero", lambda: overlapping_allan_variance_exact(3, 1, 0), ValueError, "C=0"),
 ]
 
 
@@ -369,6 +372,7 @@ def test_invalid_table_covers_every_public_function():
         "estimator": "allan_estimator_variance", "mvue": "mvue_variance_estimate", "statistic":
         "allan_variance_statistic", "index": "innovation_index", "covariance": "covariance_entry",
         "pseudoinverse": "pseudoinverse", "coefficients": "sequence_coefficients",
+        "overlapping": "overlapping_allan_variance_exact",
     }  # fmt: skip
     covered = {aliases[name] for name in called} | {"mvue_variance"}
     functions = {name for name in graycode.__all__ if callable(getattr(graycode, name))}
