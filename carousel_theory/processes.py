@@ -24,7 +24,7 @@ from fractions import Fraction
 from typing import Any
 
 import numpy as np
-import scipy.signal
+import scipy.fft
 import sympy as sp
 
 from carousel_theory._validation import (
@@ -148,7 +148,7 @@ def fractionally_integrate(innovations: Any, d: float) -> np.ndarray:
 
     ``f_t = Σ_{i=1}^{t} ψ_{t−i} w_i`` for t = 1 … n along the last axis of ``innovations``
     (shape ``(n,)`` or ``(realisations, n)``), computed as the first n terms of the linear
-    convolution ψ * w by FFT (``scipy.signal.fftconvolve``), O(n log n). The result is the same
+    convolution ψ * w by real FFT (``scipy.fft``, zero-padded), O(n log n). The result is the same
     linear map as the direct sum, to floating-point rounding.
     """
     d = check_fractional_order("d", d)
@@ -161,11 +161,16 @@ def fractionally_integrate(innovations: Any, d: float) -> np.ndarray:
         w = check_finite_array("innovations", array, ndim=2)
         if w.shape[1] < 1:
             raise ValueError(f"innovations: must hold at least 1 sample per row, got shape {w.shape}")
+    return _fractional_integration(w, d)
+
+
+def _fractional_integration(w: np.ndarray, d: Any) -> np.ndarray:
+    """The convolution of :func:`fractionally_integrate` on validated input (no copies, no checks)."""
     n = w.shape[-1]
-    psi = fractional_coefficients(d, n)
-    if w.ndim == 2:
-        psi = psi[np.newaxis, :]
-    return scipy.signal.fftconvolve(w, psi, axes=-1)[..., :n]
+    # zero-padding to ≥ 2n − 1 makes the circular convolution equal the linear one on t = 1 … n
+    length = scipy.fft.next_fast_len(2 * n - 1, real=True)
+    transfer = scipy.fft.rfft(fractional_coefficients(d, n), length)
+    return scipy.fft.irfft(scipy.fft.rfft(w, length, axis=-1) * transfer, length, axis=-1)[..., :n]
 
 
 # --- exact covariance entries ---------------------------------------------------------------------
@@ -280,7 +285,10 @@ def sample_white(
     rng = _check_generator("rng", rng)
     variance = float(check_positive_real("variance", variance, allow_zero=True))
     realisations = _check_realisations(realisations)
-    return np.sqrt(variance) * rng.standard_normal(_shape(size, realisations))
+    noise = rng.standard_normal(_shape(size, realisations))
+    if variance != 1.0:
+        noise *= np.sqrt(variance)
+    return noise
 
 
 def sample_rate_random_walk(
@@ -289,7 +297,7 @@ def sample_rate_random_walk(
     """Rate random walk r_t = r_{t−1} + q_t, r_0 = 0, t = 1 … size (TIM 2014 eq. (2)), with
     Gaussian increments of the given variance σ_q²."""
     increments = sample_white(size, rng=rng, variance=variance, realisations=realisations)
-    return np.cumsum(increments, axis=-1)
+    return np.cumsum(increments, axis=-1, out=increments)
 
 
 def sample_flicker(
@@ -310,5 +318,7 @@ def sample_flicker(
     d = check_fractional_order("d", d)
     variance = float(check_positive_real("variance", variance, allow_zero=True))
     realisations = _check_realisations(realisations)
-    innovations = np.sqrt(variance) * rng.standard_normal(_shape(size, realisations))
-    return fractionally_integrate(innovations, d)
+    innovations = rng.standard_normal(_shape(size, realisations))
+    if variance != 1.0:
+        innovations *= np.sqrt(variance)
+    return _fractional_integration(innovations, d)
