@@ -32,7 +32,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import cho_factor, solve_triangular
-from scipy.signal import fftconvolve
 
 from carousel_theory._validation import (
     check_finite_array,
@@ -41,7 +40,7 @@ from carousel_theory._validation import (
     check_positive_real,
     check_real,
 )
-from carousel_theory.long_memory import fractional_difference_coefficients
+from carousel_theory.long_memory import fft_convolve, fractional_difference_coefficients
 from carousel_theory.processes import fractional_coefficients
 
 __all__ = ["Forecast", "fast_kalman_forecast", "fractional_covariance_rows"]
@@ -159,11 +158,10 @@ def _whitened_by_fractional_difference(x: np.ndarray, n: int, h: int, d: float, 
     psi = fractional_coefficients(d, n + h)
     phi = fractional_difference_coefficients(d, n)
     whitened_ones = np.cumsum(phi)  # Φ1: partial sums of φ
-    kernel = psi.reshape((1,) * (x.ndim - 1) + (n + h,))
-    differenced = fftconvolve(x, phi.reshape((1,) * (x.ndim - 1) + (n,)), axes=-1)[..., :n]  # Φx = ŵ
+    differenced = fft_convolve(x, phi)[..., :n]  # Φx = ŵ
     # g_kᵀu = Σ_i ψ_{n+k−i} ŵ_i: entries n … n+h−1 (0-based) of the full convolution ψ * ŵ.
-    mean_part = fftconvolve(differenced, kernel, axes=-1)[..., n : n + h]
-    q = fftconvolve(whitened_ones, psi)[n : n + h]
+    mean_part = fft_convolve(differenced, psi)[..., n : n + h]
+    q = fft_convolve(whitened_ones, psi)[n : n + h]
     s = float(whitened_ones @ whitened_ones) / sigma2_w
     r = differenced @ whitened_ones / sigma2_w
     variance_part = sigma2_w * np.cumsum(psi[:h] ** 2)  # σ_w² Σ_{j<k} ψ_j²

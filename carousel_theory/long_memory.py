@@ -24,8 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize_scalar
-from scipy.signal import fftconvolve
+from scipy import fft as scipy_fft
 
 from carousel_theory._validation import (
     check_finite_array,
@@ -80,6 +79,14 @@ def autoregressive_coefficients(d: float, length: int) -> np.ndarray:
     return -fractional_difference_coefficients(d, length + 1)[1:]
 
 
+def fft_convolve(values: np.ndarray, kernel: np.ndarray) -> np.ndarray:
+    """Full linear convolution along the last axis (broadcasting over leading axes), by real FFT."""
+    length = values.shape[-1] + kernel.shape[-1] - 1
+    size = scipy_fft.next_fast_len(length, real=True)
+    product = scipy_fft.rfft(values, size, axis=-1) * scipy_fft.rfft(kernel, size, axis=-1)
+    return scipy_fft.irfft(product, size, axis=-1)[..., :length]
+
+
 def _causal_filter(coefficients: np.ndarray, values: np.ndarray) -> np.ndarray:
     """y_t = Σ_{i ≤ t} c_{t−i} x_i along the last axis (the sequence is zero before its start)."""
     n = values.shape[-1]
@@ -88,8 +95,7 @@ def _causal_filter(coefficients: np.ndarray, values: np.ndarray) -> np.ndarray:
         for lag in range(n):
             out[..., lag:] += coefficients[lag] * values[..., : n - lag]
         return out
-    kernel = coefficients[:n].reshape((1,) * (values.ndim - 1) + (n,))
-    return fftconvolve(values, kernel, axes=-1)[..., :n]
+    return fft_convolve(values, coefficients[:n])[..., :n]
 
 
 def fractional_integral(white: np.ndarray, d: float) -> np.ndarray:
@@ -174,6 +180,8 @@ def exact_local_whittle(
     high = _check_order("bounds[1]", bounds[1], -1.0, 2.0)
     if not low < high:
         raise ValueError(f"bounds={bounds!r}: must be increasing")
+    from scipy.optimize import minimize_scalar  # imported here: slow to import, needed only here
+
     result = minimize_scalar(
         lambda order: _whittle_objective(array, order, m),
         bounds=(low, high),

@@ -19,6 +19,7 @@ variable", §IV-A). Both give forecasts that are linear in the data and do not d
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -38,12 +39,21 @@ __all__ = [
     "METHODS",
     "BiasModel",
     "Forecast",
+    "MetricSummary",
+    "batch_metrics",
     "calibration_mean_forecast",
+    "error_moments",
+    "forecast_batch",
     "integrated_error",
     "kalman_forecast",
     "moving_average_forecast",
+    "population_metrics",
     "predict",
+    "prediction_weights",
     "root_sum_squared_error",
+    "sampling_standard_errors",
+    "simulate_sections",
+    "summarize_metrics",
 ]
 
 #: The three predictors, in the column order of SJ 2012 Table I.
@@ -57,13 +67,14 @@ class BiasModel:
 
     y_t = b + f_t + v_t with f the fractional integral of TIM 2014 eq. (3) of order ``d`` driven by
     white noise of variance ``driving_variance`` (σ_w²), and v white of variance ``white_variance``
-    (σ_v²). SJ 2012 Table I (simulated) uses d = ½ and σ_v² = 0.
+    (σ_v²). SJ 2012 Table I (simulated) uses d = ½ and σ_v² = 0. The default bias prior is the
+    paper's ("calibration-mean"); "diffuse" gives the best linear unbiased predictor.
     """
 
     d: float = 0.5
     driving_variance: float = 1.0
     white_variance: float = 0.0
-    bias_prior: str = "diffuse"
+    bias_prior: str = "calibration-mean"
 
     def __post_init__(self) -> None:
         check_fractional_order("d", self.d)
@@ -339,6 +350,55 @@ def _expected_norm(eigenvalues: np.ndarray) -> float:
     return total / (2.0 * math.sqrt(math.pi))
 
 
+@functools.lru_cache(maxsize=32)
+def _error_covariance(n: int, h: int, method: str, model: BiasModel) -> np.ndarray:
+    """C_e = G Σ Gᵀ, the covariance of the forecast errors e = G x (read-only).
+
+    Σ = σ_w² ΨΨᵀ + σ_v² I, so C_e = σ_w² (GΨ)(GΨ)ᵀ + σ_v² GGᵀ; GΨ is a causal filter run backwards
+    along each row of G (Ψᵀ is upper-triangular Toeplitz), O(h (n + h) log(n + h)).
+    """
+    from carousel_theory.long_memory import fractional_integral
+
+    weights = prediction_weights(n, h, method, model)
+    operator = np.hstack([-weights, np.eye(h)])  # G: e = G x
+    mixed = fractional_integral(operator[:, ::-1], model.d)[:, ::-1]  # GΨ
+    covariance = model.driving_variance * (mixed @ mixed.T)
+    if model.white_variance > 0:
+        covariance += model.white_variance * (operator @ operator.T)
+    covariance.setflags(write=False)
+    return covariance
+
+
+@functools.lru_cache(maxsize=32)
+def _error_spectrum(n: int, h: int, method: str, model: BiasModel) -> tuple[np.ndarray, float]:
+    """Eigenvalues of C_e and Var IE = 1ᵀ C_e 1."""
+    covariance = _error_covariance(n, h, method, model)
+    eigenvalues = np.linalg.eigvalsh(covariance)
+    eigenvalues.setflags(write=False)
+    return eigenvalues, float(covariance.sum())
+
+
+def error_moments(
+    calibration_length: int, horizon: int, method: str, model: BiasModel | None = None
+) -> tuple[float, float, float]:
+    """Exact (Var IE, E RSSE², Var RSSE²) = (1ᵀC_e1, tr C_e, 2 tr C_e²) of the Gaussian forecast errors;
+    no eigenvalues needed."""
+    n, h, model = _check_population_arguments(calibration_length, horizon, method, model)
+    covariance = _error_covariance(n, h, method, model)
+    return float(covariance.sum()), float(np.trace(covariance)), 2.0 * float((covariance**2).sum())
+
+
+def _check_population_arguments(calibration_length, horizon, method, model):
+    model = BiasModel() if model is None else model
+    if not isinstance(model, BiasModel):
+        raise TypeError(f"model={model!r}: must be a BiasModel")
+    if method not in METHODS:
+        raise ValueError(f"method={method!r}: must be one of {METHODS}")
+    n = check_positive_integer("calibration_length", calibration_length, minimum=2)
+    h = check_positive_integer("horizon", horizon)
+    return n, h, model
+
+
 def population_metrics(
     calibration_length: int, horizon: int, method: str, model: BiasModel | None = None
 ) -> tuple[MetricSummary, float]:
@@ -351,21 +411,66 @@ def population_metrics(
     quadrature (relative error ~1e-12); Var RSSE = tr C_e − (E RSSE)². Returns the summary and
     E RSSE².
     """
-    from carousel_theory.fast_prediction import fractional_covariance_rows
+    n, h, model = _check_population_arguments(calibration_length, horizon, method, model)
+    eigenvalues, variance_ie = _error_spectrum(n, h, method, model)
+    mean_square = float(eigenvalues.sum())
+    mean_rsse = _expected_norm(eigenvalues)
+    std_rsse = math.sqrt(max(mean_square - mean_rsse**2, 0.0))
+    return MetricSummary(0.0, math.sqrt(variance_ie), mean_rsse, std_rsse), mean_square
 
-    model = BiasModel() if model is None else model
-    n = check_positive_integer("calibration_length", calibration_length, minimum=2)
-    h = check_positive_integer("horizon", horizon)
-    weights = prediction_weights(n, h, method, model)
-    total = n + h
-    sigma = model.driving_variance * fractional_covariance_rows(model.d, total, total)
-    sigma[np.diag_indices(total)] += model.white_variance
-    operator = np.hstack([-weights, np.eye(h)])
-    error_covariance = operator @ sigma @ operator.T
-    variance_ie = float(error_covariance.sum())
-    mean_square = float(np.trace(error_covariance))
-    mean_rsse = _expected_norm(np.linalg.eigvalsh(error_covariance))
-    summary = MetricSummary(
-        0.0, math.sqrt(variance_ie), mean_rsse, math.sqrt(max(mean_square - mean_rsse**2, 0.0))
+
+def _expected_norm_cubed(eigenvalues: np.ndarray) -> float:
+    """E Q^{3/2} = (3/(4√π)) ∫₀^∞ (E e^{−tQ} − 1 + t E Q) t^{−5/2} dt (since ∫(e^{−u} − 1 + u)u^{−5/2} du
+    = Γ(−3/2) = 4√π/3), written with series where the terms cancel."""
+    from scipy.integrate import quad
+
+    lam = eigenvalues[eigenvalues > 0]
+
+    def log1p_minus_x(x: np.ndarray) -> np.ndarray:
+        small = x < 1e-3
+        out = np.empty_like(x)
+        xs = x[small]
+        out[small] = -(xs**2) / 2 + xs**3 / 3 - xs**4 / 4 + xs**5 / 5
+        out[~small] = np.log1p(x[~small]) - x[~small]
+        return out
+
+    def integrand(log_t: float) -> float:
+        t = math.exp(log_t)
+        excess = -0.5 * float(log1p_minus_x(2.0 * t * lam).sum())  # log E e^{−tQ} + t E Q ≥ 0
+        a = -0.5 * float(np.log1p(2.0 * t * lam).sum())  # log E e^{−tQ}
+        expm1_minus = math.expm1(a) - a if abs(a) > 1e-2 else a * a / 2 + a**3 / 6 + a**4 / 24 + a**5 / 120
+        return (expm1_minus + excess) * t**-1.5
+
+    centre = -math.log(float(lam.sum()))
+    total = 0.0
+    for low, high in ((centre - 40, centre - 5), (centre - 5, centre + 5), (centre + 5, centre + 60)):
+        value, _ = quad(integrand, low, high, limit=400, epsabs=0.0, epsrel=1e-12)
+        total += value
+    return 3.0 * total / (4.0 * math.sqrt(math.pi))
+
+
+def sampling_standard_errors(
+    calibration_length: int, horizon: int, method: str, model: BiasModel | None = None, runs: int = 1000
+) -> MetricSummary:
+    """Standard errors of the four Table I statistics computed from ``runs`` independent runs.
+
+    Exact population moments enter: SE(mean IE) = σ_IE/√R; IE is Gaussian, so SE(std IE) =
+    σ_IE/√(2(R − 1)) to first order; SE(mean RSSE) = σ_R/√R; SE(std RSSE) = √((μ₄ − σ_R⁴)/R)/(2σ_R)
+    (delta method) with μ₄ = E Q² − 4μ E Q^{3/2} + 6μ² E Q − 3μ⁴ and E Q² = (tr C_e)² + 2 tr C_e².
+    """
+    n, h, model = _check_population_arguments(calibration_length, horizon, method, model)
+    runs = check_positive_integer("runs", runs, minimum=2)
+    summary, mean_square = population_metrics(n, h, method, model)
+    eigenvalues, _ = _error_spectrum(n, h, method, model)
+    mean = summary.mean_rsse
+    fourth_raw = mean_square**2 + 2.0 * float((eigenvalues**2).sum())
+    central_fourth = (
+        fourth_raw - 4 * mean * _expected_norm_cubed(eigenvalues) + 6 * mean**2 * mean_square - 3 * mean**4
     )
-    return summary, mean_square
+    variance = summary.std_rsse**2
+    return MetricSummary(
+        summary.std_ie / math.sqrt(runs),
+        summary.std_ie / math.sqrt(2.0 * (runs - 1)),
+        summary.std_rsse / math.sqrt(runs),
+        math.sqrt(max(central_fourth - variance**2, 0.0) / runs) / (2.0 * summary.std_rsse),
+    )
