@@ -630,10 +630,19 @@ def _check_variance_stationary() -> Verdict:
         diagonal = np.einsum("ij,ij->i", K, K)  # diag K Kᵀ, exact in float64 (entries ±1/2)
         if not np.all(diagonal == n / 4):
             return Verdict(Status.REFUTED, f"diag K Kᵀ is not constant n/4 at n = {n}")
+    # Only the variance: the covariance at a fixed lag is not constant (it depends on r XOR s).
+    K = gray_matrix(3)
+    covariance = K @ K.T
+    lag_three = (covariance[0, 3], covariance[1, 4])
+    if lag_three[0] == lag_three[1]:
+        return Verdict(Status.FAILED, "cov(R_1, R_4) = cov(R_2, R_5) at n = 3; recheck the stationarity note")
     return Verdict(
         Status.VERIFIED,
         "Var R_t = C²(K Kᵀ)_tt = C² n/4 for every t, exhaustively for n = 2 … 14 (every row of K holds n "
-        "entries ±1/2): the sequences are variance-stationary.",
+        "entries ±1/2): the sequences are variance-stationary, as stated. They are not (covariance-) "
+        "stationary: "
+        f"at n = 3, cov(R_1, R_4) = {lag_three[0]:g} C² but cov(R_2, R_5) = {lag_three[1]:g} C² (see "
+        "TIM2014-sec4-stationary).",
     )
 
 

@@ -360,19 +360,22 @@ def _check_unbiased_factor() -> Verdict:
                 total_means += (difference * covariance * difference.T)[0]
             expected_allan = total_means / (2 * (bins - 1))
             without_half = 2 * expected_allan
-            without_tau = tau**2 * without_half
+            # Bin sums instead of bin means (the 1/τ of ȳ removed, the 1/2 kept): τ² E[σ_A²].
+            without_tau = tau**2 * expected_allan
             results.append((n, m, expected_allan, without_half, without_tau))
     if any(e != sp.Rational(1, 2) or e != allan_variance_exact(n, m, 1) for n, m, e, _, _ in results):
         return Verdict(Status.FAILED, "E[σ_A²(2^m)] of R_{2^n} is not 1/2 for some n ≤ 6")
     if any(w != 1 for _, _, _, w, _ in results):
         return Verdict(Status.FAILED, "dropping the factor 1/2 does not give C² = 1")
-    counter = next((n, m, t) for n, m, _, _, t in results if t != 1)
+    if any(t == 1 for _, _, _, _, t in results):
+        return Verdict(Status.FAILED, "dropping the 1/τ of the bin means gives C² for some τ")
+    at = {2**m: t for n, m, _, _, t in results if n == 2}
     return Verdict(
         Status.ERRATUM,
-        f"Exactly, for every n = 2 … 6 and τ = 2^m: E[σ_A²(τ)] = C²/2, so (20) without its factor 1/2 is "
-        "unbiased "
-        f"for C² (primary rendering). (20) contains no 1/τ; removing the 1/τ of the bin means (alternative "
-        f"rendering) gives τ²C², e.g. {counter[2]} at n = {counter[0]}, τ = {2 ** counter[1]}.",
+        "Exactly, for every n = 2 … 6 and τ = 2^m: E[σ_A²(τ)] = C²/2, so (20) without its factor 1/2 is "
+        "unbiased for C² (primary rendering). (20) contains no 1/τ; with bin sums instead of bin means "
+        f"(alternative rendering's reading) it has expectation τ²C²/2 ({at[1]} at τ = 1, {at[2]} at τ = 2), "
+        "never C².",
         corrected="(20) without the term 1/2 yields an unbiased estimate of C², i.e. E[2σ_A²(τ)] = C²",
     )
 
