@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import re
 from fractions import Fraction
+from typing import Any
 
 import mpmath
 import numpy as np
@@ -182,7 +183,7 @@ def _halves(values) -> list[Fraction]:
 
 H = Fraction(1, 2)
 #: Table I as printed in the alternative rendering: S₂, S₂⊗[1 1], a_{1…4}, S₄, S₄⊗[1 1], a_{1…8}, S₈.
-TABLE_I_ALTERNATIVE = {
+TABLE_I_ALTERNATIVE: dict[str, list[Any]] = {
     "S_2": [-H, H],
     "S_2 ⊗ [1 1]": [-H, -H, H, H],
     "a_1…4": [-H, H, H, -H],
@@ -193,7 +194,7 @@ TABLE_I_ALTERNATIVE = {
 }
 #: The entries the primary rendering's garbled Table I still shows unambiguously: its S₈ row and,
 #: read as stacked pairs (upper over lower) in the merged rows, these columns.
-TABLE_I_PRIMARY_READABLE = {
+TABLE_I_PRIMARY_READABLE: dict[str, list[Any]] = {
     "S_8": [-3 * H, -H, H, -H, H, 3 * H, H, -H],
     "S_4": [None, 0, 1, 0],  # "_ ·1 0 1 0": the sign of −1 is lost
     "S_4 ⊗ [1 1] over a_1…8": [(-1, -H), (-1, H), (0, H), (0, -H), (1, -H), (None, H), (0, H), (0, -H)],
