@@ -16,6 +16,9 @@ produce the same forms from first principles; the proofs in ``proofs/`` assert t
 
 from __future__ import annotations
 
+import math
+from fractions import Fraction
+
 import sympy as sp
 
 from carousel_theory._validation import check_positive_integer
@@ -54,6 +57,18 @@ __all__ = [
 ]
 
 _pi = sp.pi
+
+
+def _as_expression(name: str, value: object) -> sp.Expr:
+    """A SymPy expression or an exact/finite number; TypeError for anything else (strings, bools, None)."""
+    if isinstance(value, sp.Basic):
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float, Fraction)):
+        raise TypeError(f"{name}={value!r}: must be a SymPy expression or a number")
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError(f"{name}={value!r}: must be finite")
+    return sp.nsimplify(value) if isinstance(value, Fraction) else sp.sympify(value)
+
 
 # --------------------------------------------------------------------------------------------
 # §III-A additive bias, TIM 2014 eq. (8): (1/N) Σ_{i=1}^{N} sin(2πi/N) and the cosine companion.
@@ -105,6 +120,9 @@ def rrw_bin_covariance_from_weights(
     with W = Σ w_i (``weight_sum``), M = Σ i w_i (``first_moment``) and
     V = Σ_i (Σ_{j≥i} w_j)² = wᵀRRᵀw (``local_variance``, TIM 2014 eq. (17)'s sᵀRRᵀs).
     """
+    weight_sum = _as_expression("weight_sum", weight_sum)
+    first_moment = _as_expression("first_moment", first_moment)
+    local_variance = _as_expression("local_variance", local_variance)
     return weight_sum**2 * (sp.Min(a, b) - 1) * N + sp.Piecewise(
         (local_variance, sp.Eq(a, b)), (weight_sum * first_moment, True)
     )
@@ -169,6 +187,7 @@ RRW_CAROUSEL_COVARIANCE = sp.Piecewise(
 
 def geometric_partial_sum(length: sp.Expr, angle: sp.Expr = theta) -> sp.Expr:
     """Σ_{j=1}^{length} exp(i j angle) = e^{i angle}(e^{i length·angle} − 1)/(e^{i angle} − 1)."""
+    length, angle = _as_expression("length", length), _as_expression("angle", angle)
     z = sp.exp(sp.I * angle)
     return z * (z**length - 1) / (z - 1)
 
@@ -179,11 +198,13 @@ def sine_partial_sum(length: sp.Expr = m, angle: sp.Expr = theta) -> sp.Expr:
     The imaginary part of :func:`geometric_partial_sum` (equivalently, telescoping
     2 sin(θ/2) sin(jθ) = cos((j − ½)θ) − cos((j + ½)θ)).
     """
+    length, angle = _as_expression("length", length), _as_expression("angle", angle)
     return (sp.cos(angle / 2) - sp.cos((2 * length + 1) * angle / 2)) / (2 * sp.sin(angle / 2))
 
 
 def cosine_partial_sum(length: sp.Expr = m, angle: sp.Expr = theta) -> sp.Expr:
     """C_m = Σ_{j=1}^{m} cos(j θ) = (sin((2m + 1)θ/2) − sin(θ/2)) / (2 sin(θ/2)), the real part."""
+    length, angle = _as_expression("length", length), _as_expression("angle", angle)
     return (sp.sin((2 * length + 1) * angle / 2) - sp.sin(angle / 2)) / (2 * sp.sin(angle / 2))
 
 
@@ -196,6 +217,9 @@ def sum_over_period(expression: sp.Expr, angle: sp.Symbol = alpha, count: sp.Exp
     unless count divides p. So when the degree is below ``count`` only c_0 survives: the sum is
     count·c_0. The caller guarantees degree < count (degree 2, i.e. N ≥ 3, for the RRW forms).
     """
+    expression = _as_expression("expression", expression)
+    if not isinstance(angle, sp.Symbol):
+        raise TypeError(f"angle={angle!r}: must be a SymPy Symbol")
     laurent = sp.expand(
         expression.subs({sp.cos(angle): (u + 1 / u) / 2, sp.sin(angle): (u - 1 / u) / (2 * sp.I)})
     )
@@ -228,12 +252,14 @@ def derive_rrw_carousel_quadratic_forms() -> dict[str, sp.Expr]:
 def expansion_in_inverse_N(expression: sp.Expr, order: int = 6) -> sp.Expr:
     """The large-N expansion of ``expression`` (a generic-branch form) up to, excluding, N^{−order}."""
     order = check_positive_integer("order", order)
+    expression = _as_expression("expression", expression)
     series = sp.series(expression.subs(N, 1 / h), h, 0, order).removeO()
     return sp.expand(series.subs(h, 1 / N))
 
 
 def leading_coefficient(expression: sp.Expr) -> sp.Expr:
     """lim_{N→∞} expression / N: the paper's "asymptotic proportionality coefficient"."""
+    expression = _as_expression("expression", expression)
     # limits in the bounded variable h = 1/N: SymPy's limit in N itself mishandles csc(π/N)
     return sp.limit(expression.subs(N, 1 / h) * h, h, 0, "+")
 

@@ -22,7 +22,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from carousel_theory import closed_forms as cf
-from carousel_theory.symbols import N, a, alpha, b, k, rho, var_x, var_y
+from carousel_theory.symbols import N, a, alpha, b, k, m, rho, var_x, var_y
 
 
 @pytest.fixture(autouse=True)
@@ -410,6 +410,24 @@ def test_rrw_average_covariance_for_any_bins(n, first, second):
             TypeError,
             "order=",
             id="expansion-order-float",
+        ),
+        pytest.param(
+            lambda: cf.expansion_in_inverse_N("csc(pi/N)"), TypeError, "expression=", id="expansion-string"
+        ),
+        pytest.param(lambda: cf.leading_coefficient(None), TypeError, "expression=", id="leading-none"),
+        pytest.param(
+            lambda: cf.sum_over_period(sp.cos(alpha), angle="alpha"), TypeError, "angle=", id="period-angle"
+        ),
+        pytest.param(lambda: cf.geometric_partial_sum("m"), TypeError, "length=", id="geometric-string"),
+        pytest.param(
+            lambda: cf.sine_partial_sum(m, float("nan")), ValueError, "angle=nan", id="sine-partial-nan"
+        ),
+        pytest.param(lambda: cf.cosine_partial_sum(True), TypeError, "length=True", id="cosine-partial-bool"),
+        pytest.param(
+            lambda: cf.rrw_bin_covariance_from_weights(1, "M", 1),
+            TypeError,
+            "first_moment=",
+            id="lemma-string",
         ),
     ],
 )
