@@ -385,6 +385,36 @@ def test_rrw_average_covariance_for_any_bins(n, first, second):
     assert cf.RRW_AVERAGE_COVARIANCE.subs({N: n, a: first, b: second}) == sp.Rational(numerator, n * n)
 
 
+_carousel_covariance = sp.lambdify((N, a, b), cf.RRW_CAROUSEL_COVARIANCE, "numpy")
+
+
+@given(
+    n=st.integers(min_value=1, max_value=300),
+    first=st.integers(min_value=1, max_value=60),
+    second=st.integers(min_value=1, max_value=60),
+)
+@example(n=1, first=2, second=5)
+@example(n=2, first=3, second=3)
+@example(n=3, first=1, second=2)
+@example(n=4, first=4, second=4)
+def test_rrw_carousel_covariance_for_any_bins(n, first, second):
+    """Cov of carouselled bins a, b from the O(kN) tails R_kᵀw (sine plus cosine gyro) in float64."""
+    angle = 2 * np.pi * np.arange(1, n + 1) / n
+    length = max(first, second) * n
+
+    def tails(bin_number, weights):
+        vector = np.zeros(length)
+        vector[(bin_number - 1) * n : bin_number * n] = weights
+        return np.cumsum(vector[::-1])[::-1]
+
+    brute = sum(
+        float(np.dot(tails(first, weights), tails(second, weights)))
+        for weights in (np.sin(angle) / n, np.cos(angle) / n)
+    )
+    # float64 sums of ≤ 18000 terms of size ≤ 1 (N = 1: terms up to 60): absolute error far below 1e-9
+    assert math.isclose(brute, float(_carousel_covariance(n, first, second)), rel_tol=1e-9, abs_tol=1e-9)
+
+
 # ---------------------------------------------------------------------------------------------
 # Invalid calls of the public helpers (the registry's table is in test_formulas.py)
 # ---------------------------------------------------------------------------------------------
