@@ -464,3 +464,15 @@ def test_rrw_carousel_covariance_for_any_bins(n, first, second):
 def test_invalid_calls(call, error, message):
     with pytest.raises(error, match=message):
         call()
+
+
+def test_all_is_honest():
+    for name in cf.__all__:
+        assert hasattr(cf, name), name
+    defined_functions = {
+        name
+        for name, value in vars(cf).items()
+        if callable(value) and getattr(value, "__module__", None) == cf.__name__ and not name.startswith("_")
+    }
+    constants = {name for name, value in vars(cf).items() if name.isupper() and len(name) > 1}
+    assert defined_functions | constants == set(cf.__all__)
