@@ -212,3 +212,14 @@ def test_claims_reach_their_verdicts():
         )
         assert len(verdict.evidence) < 500
         assert verdict == claim.check()  # deterministic
+
+
+def test_derivation_document_is_deterministic_and_committed():
+    from pathlib import Path
+
+    from carousel_theory.derivations.tim2014_constant_allan_variance import DOCUMENT
+
+    text = DOCUMENT.render()
+    assert text == DOCUMENT.render()
+    committed = Path(__file__).resolve().parents[1] / "derivations" / f"{DOCUMENT.name}.md"
+    assert committed.read_text(encoding="utf-8") == text
