@@ -15,6 +15,9 @@ from carousel_theory.claims import tim2014_experiments as experiments
 from carousel_theory.claims import tim2014_renderings as renderings
 from carousel_theory.cli import main
 
+#: The claim modules whose checks run here (fast). Every claim of the registry is decided by
+#: `carousel-theory check --check` in CI, which fails on a FAILED status; running them all here too
+#: would double that minute.
 FAST_MODULES = (experiments, renderings)
 
 
@@ -54,18 +57,6 @@ def test_fast_claims_decide(claim):
     assert (verdict.corrected is not None) == (verdict.status is Status.ERRATUM), claim.id
     # Deterministic evidence: the same text on a second run.
     assert claim.check() == verdict
-
-
-@pytest.mark.slow
-def test_every_claim_of_the_registry_decides():
-    from carousel_theory.report import run_checks
-
-    failed = [
-        f"{item.claim.id}: {item.verdict.evidence}"
-        for item in run_checks(all_claims(), show_progress=False)
-        if not isinstance(item.verdict, Verdict) or item.verdict.status is Status.FAILED
-    ]
-    assert not failed
 
 
 # --- carousel-theory check --check ---------------------------------------------------------------
