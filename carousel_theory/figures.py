@@ -196,6 +196,12 @@ def _draw_simulation(plt, process: str, realisations: int, rng: np.random.Genera
         title = f"TIM 2014 Fig. 5: 1/f noise, $d = 1/2$, $N = {N}$, $\\sigma_w^2 = 1$"
         labels = ("exact", "exact")
     figure, axes = plt.subplots(figsize=(6.4, 4.0))
+    # A mean of R squares of a zero-mean Gaussian of variance V has standard error V·√(2/R).
+    relative_error = 2 * np.sqrt(2.0 / realisations)
+    for theory, colour in ((theory_averaged, "0.85"), (theory_carouselled, "lightblue")):
+        axes.fill_between(
+            k, theory * (1 - relative_error), theory * (1 + relative_error), color=colour, linewidth=0
+        )
     axes.plot(k, averaged, "o", markersize=3, color="0.55", label=f"averaged, Monte Carlo ({realisations})")
     axes.plot(k, theory_averaged, "-", color="black", label=f"averaged, {labels[0]}")
     axes.plot(
@@ -211,7 +217,7 @@ def _draw_simulation(plt, process: str, realisations: int, rng: np.random.Genera
         axes.set_yscale("log")
     else:
         axes.set_ylim(bottom=0)
-    axes.set_xlabel("data bin $k$")
+    axes.set_xlabel("data bin $k$ (shaded: exact ± 2 standard errors of the Monte Carlo estimate)")
     axes.set_ylabel("variance of the bin estimate")
     axes.set_title(title)
     axes.legend(fontsize="small")
