@@ -19,18 +19,6 @@ from hypothesis import strategies as st
 from carousel_theory import formulas
 from carousel_theory.formulas import FORMULAS, Formula, formula
 
-
-@pytest.fixture(autouse=True)
-def _forbid_global_numpy_rng(monkeypatch):
-    """conftest's guard, minus ``seed`` (Hypothesis seeds the global state itself)."""
-
-    def refuse(*args, **kwargs):
-        raise AssertionError("the global numpy.random state was used; pass a numpy.random.Generator")
-
-    for name in ("rand", "randn", "random", "normal", "standard_normal", "uniform", "randint"):
-        monkeypatch.setattr(np.random, name, refuse)
-
-
 STABLE_NAMES = {
     "rrw_average_cov": ("N", "a", "b"),
     "rrw_average_var": ("N", "k"),
