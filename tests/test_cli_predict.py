@@ -1,0 +1,136 @@
+"""``carousel-theory predict``: a user's recording, the simulated Table I batch, and bad input."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+
+import numpy as np
+import pytest
+
+from carousel_theory.cli import main
+from carousel_theory.fast_prediction import fast_kalman_forecast
+from carousel_theory.long_memory import fractional_integral
+
+
+@pytest.fixture
+def recording(tmp_path):
+    rng = np.random.default_rng(17)
+    rates = 1e-3 + 1e-4 * fractional_integral(rng.standard_normal(600), 0.5) + 3e-4 * rng.standard_normal(600)
+    path = tmp_path / "gyro.npz"
+    np.savez(path, t=np.arange(600) / 10.0, wx=rates, fs=10.0)
+    return path, rates
+
+
+def test_forecast_csv_holds_the_kalman_prediction_and_interval(recording, tmp_path, capsys):
+    path, rates = recording
+    output = tmp_path / "forecast.csv"
+    arguments = ["predict", str(path), "--calibration", "200", "--horizon", "150", "--start", "100"]
+    arguments += ["--driving-variance", "1e-8", "--white-variance", "9e-8", "--prior", "diffuse"]
+    assert main([*arguments, "--output", str(output)]) == 0
+    with output.open() as handle:
+        table = list(csv.DictReader(handle))
+    assert len(table) == 150
+    assert table[0]["index"] == "300"
+    expected = fast_kalman_forecast(rates[100:300], 150, d=0.5, driving_variance=1e-8, white_variance=9e-8)
+    got = np.array([float(row["kf_prediction"]) for row in table])
+    np.testing.assert_allclose(got, expected.mean, rtol=1e-12)
+    sigma = np.array([float(row["kf_sigma"]) for row in table])
+    np.testing.assert_allclose(sigma, np.sqrt(expected.observation_variance), rtol=1e-12)
+    upper = np.array([float(row["kf_upper_2sigma"]) for row in table])
+    np.testing.assert_allclose(upper, expected.mean + 2 * sigma, rtol=1e-12)
+    assert float(table[0]["measured"]) == rates[300]
+    assert float(table[0]["cm_prediction"]) == pytest.approx(rates[100:300].mean(), rel=1e-15)
+    assert "IE" in capsys.readouterr().out
+
+
+def test_forecast_json_and_estimated_variances(recording, tmp_path):
+    path, _ = recording
+    output = tmp_path / "forecast.json"
+    assert (
+        main(["predict", str(path), "--calibration", "300", "--horizon", "400", "--output", str(output)]) == 0
+    )
+    payload = json.loads(output.read_text())
+    assert payload["model"]["driving_variance"] > 0
+    columns = payload["columns"]
+    assert len(columns["kf_prediction"]) == 400
+    # beyond the end of the recording the measured column is empty
+    assert columns["measured"][-1] is None and columns["measured"][0] is not None
+
+
+def test_table1_json_has_every_method_with_population_values(capsys):
+    assert main(["predict", "--table1", "--runs", "40", "--seed", "3", "--calibration", "50", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    for method in ("KF", "MA", "CM"):
+        entry = result[method]
+        for key in ("mean_ie", "std_ie", "mean_rsse", "std_rsse"):
+            assert math.isfinite(entry[key])
+            assert math.isfinite(entry["population"][key])
+        assert entry["population"]["mean_ie"] == 0.0
+    assert result["settings"]["runs"] == 40 and result["settings"]["horizon"] == 50
+
+
+def test_table1_is_reproducible_for_a_seed(capsys):
+    arguments = ["predict", "--table1", "--runs", "20", "--seed", "9", "--calibration", "30", "--json"]
+    main(arguments)
+    first = capsys.readouterr().out
+    main(arguments)
+    assert capsys.readouterr().out == first
+
+
+@pytest.mark.data
+def test_prediction_on_the_measured_recording(shared_data, tmp_path):
+    path = shared_data / "adis16405_static" / "adis16405_run1.npz"
+    output = tmp_path / "adis.csv"
+    assert main(["predict", str(path), "--axis", "wy", "--calibration", "500", "--output", str(output)]) == 0
+    assert output.read_text().count("\n") == 501
+
+
+INVALID = [
+    ("calibration_one_sample", ["--calibration", "1"], "--calibration"),
+    ("horizon_zero", ["--horizon", "0"], "--horizon"),
+    ("d_one", ["--d", "1.0"], "--d"),
+    ("d_negative", ["--d", "-0.1"], "--d"),
+    (
+        "driving_variance_negative",
+        ["--driving-variance", "-1", "--white-variance", "0"],
+        "--driving-variance",
+    ),
+    ("start_negative", ["--start", "-5"], "--start"),
+    ("calibration_too_long", ["--calibration", "5000"], "--calibration"),
+    ("unknown_axis", ["--axis", "wq"], "--axis"),
+    ("output_suffix", ["--output", "forecast.txt"], "--output"),
+]
+
+
+@pytest.mark.parametrize(("extra", "named"), [(e, n) for _, e, n in INVALID], ids=[i for i, _, _ in INVALID])
+def test_invalid_options_exit_2_with_a_message(recording, tmp_path, capsys, monkeypatch, extra, named):
+    monkeypatch.chdir(tmp_path)
+    path, _ = recording
+    assert main(["predict", str(path), "--calibration", "100", *extra]) == 2
+    assert named in capsys.readouterr().err
+
+
+def test_nan_in_the_recording_is_refused(tmp_path, capsys):
+    path = tmp_path / "bad.csv"
+    path.write_text("t,wx\n0,0.1\n0.1,nan\n0.2,0.3\n")
+    assert main(["predict", str(path), "--calibration", "2"]) == 2
+    assert "nan" in capsys.readouterr().err.lower()
+
+
+def test_inf_in_the_recording_is_refused(tmp_path, capsys):
+    path = tmp_path / "bad.npz"
+    np.savez(path, t=np.arange(4.0), wx=np.array([0.0, np.inf, 1.0, 2.0]))
+    assert main(["predict", str(path), "--calibration", "2"]) == 2
+    assert "inf" in capsys.readouterr().err.lower()
+
+
+@pytest.mark.parametrize(
+    "arguments",
+    [["predict"], ["predict", "--table1", "--runs", "1"], ["predict", "--table1", "x.npz"]],
+    ids=["no_data", "table1_one_run", "table1_with_data_file"],
+)
+def test_invalid_invocations_exit_2(arguments, capsys):
+    assert main(arguments) == 2
+    assert "error" in capsys.readouterr().err
