@@ -851,6 +851,16 @@ CLAIMS: list[Claim] = [
         _check_predicted_bands,
     ),
     Claim(
+        "TIM2014-secVC-transient-excluded",
+        PAPER,
+        "§V-C, ¶2",
+        "The initial transient period was excluded from the Allan variance of Fig. 6 and from the confidence "
+        "intervals of Fig. 7, except for the carouselled case.",
+        _not_checkable(
+            "A processing choice on a recording that is not public; the transient's length is not given."
+        ),
+    ),
+    Claim(
         "TIM2014-secVC-warmup-not-visible-carouselled",
         PAPER,
         "§V-C, ¶2",
