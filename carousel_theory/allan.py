@@ -51,6 +51,7 @@ __all__ = [
     "RRW_ALLAN_VARIANCE",
     "WHITE_ALLAN_VARIANCE",
     "AllanResult",
+    "allan_covariance",
     "allan_variance",
     "difference_covariance",
     "equivalent_degrees_of_freedom",
@@ -283,6 +284,136 @@ def difference_covariance(
         inside = lags < len(taps)
         total[inside] += variance * autocovariance[lags[inside]]
     return total
+
+
+def _model_parts(model: Any) -> dict[str, float]:
+    """Driving variance of each component of a NoiseModel (quantization as the variance of fs·e)."""
+    parts = {
+        "white": float(model.white_variance),
+        "rrw": float(model.rrw_variance),
+        "flicker": float(model.flicker_variance),
+        "quantization": float(model.quantization) ** 2 * float(model.sample_rate) ** 2,
+    }
+    return {name: value for name, value in parts.items() if value > 0}
+
+
+def _positioned_taps(name: str, m: int, length: int, d: float, reach: int) -> tuple[np.ndarray, int]:
+    """Taps g and offset o such that the cluster-sum difference starting at sample a is
+    Σ_k g[k] e_{a + o + k} for the component's unit white driving noise e."""
+    if name == "white":
+        return np.concatenate((-np.ones(m), np.ones(m))), 0
+    if name == "rrw":
+        return np.concatenate((np.arange(m, dtype=np.float64), np.arange(m, 0, -1, dtype=np.float64))), 0
+    if name == "quantization":
+        taps = np.zeros(2 * m + 1)
+        taps[[0, m, 2 * m]] = (1.0, -2.0, 1.0)
+        return taps, -1
+    taps_length = min(length, reach)
+    G = _second_difference_of_cumulative_psi(d, m, taps_length)
+    return G[::-1].copy(), 2 * m - taps_length
+
+
+#: The 1/f filter is cut at this many cluster lengths in :func:`allan_covariance` (its tail decays
+#: as u^{d−2}).
+FLICKER_REACH_IN_CLUSTERS = 16
+
+
+def _overlap(start_a: Any, end_a: Any, start_b: Any, end_b: Any) -> Any:
+    """Length of the intersection of the integer ranges [start_a, end_a) and [start_b, end_b)."""
+    return np.maximum(0, np.minimum(end_a, end_b) - np.maximum(start_a, start_b))
+
+
+def _cross_correlation(name: str, m_i: int, m_j: int, g_i: np.ndarray, g_j: np.ndarray) -> np.ndarray:
+    """X(l) = Σ_k g_i[k] g_j[k + l] for l = −(len g_i − 1) … len g_j − 1 (as np.correlate(g_j, g_i, "full")).
+
+    White (two ±1 boxes): sums of interval overlaps, exact in integers. Rate random walk: its taps are
+    the reversed cumulative sums of the white taps, so its correlation is minus the double cumulative
+    sum of the white one, shifted by one lag. Quantization: nine spikes. 1/f: by FFT.
+    """
+    if name in ("white", "rrw"):
+        lags = np.arange(-(2 * m_i - 1), 2 * m_j)
+        X = (
+            _overlap(0, m_i, -lags, m_j - lags)
+            - _overlap(0, m_i, m_j - lags, 2 * m_j - lags)
+            - _overlap(m_i, 2 * m_i, -lags, m_j - lags)
+            + _overlap(m_i, 2 * m_i, m_j - lags, 2 * m_j - lags)
+        ).astype(np.float64)
+        if name == "white":
+            return X
+        double = -np.cumsum(np.cumsum(X))
+        return np.concatenate(([0.0], double[:-1]))
+    if name == "quantization":
+        X = np.zeros(len(g_i) + len(g_j) - 1)
+        for position_i, weight_i in ((0, 1.0), (m_i, -2.0), (2 * m_i, 1.0)):
+            for position_j, weight_j in ((0, 1.0), (m_j, -2.0), (2 * m_j, 1.0)):
+                X[position_j - position_i + len(g_i) - 1] += weight_i * weight_j
+        return X
+    size = 1 << int(np.ceil(np.log2(len(g_i) + len(g_j))))
+    wrapped = np.fft.irfft(np.conj(np.fft.rfft(g_i, size)) * np.fft.rfft(g_j, size), size)
+    lags = np.arange(-(len(g_i) - 1), len(g_j))
+    return wrapped[lags % size]
+
+
+def allan_covariance(
+    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping"
+) -> np.ndarray:
+    """Covariance matrix of the Allan variance estimates at ``tau_samples`` for Gaussian noise of ``model``.
+
+    Cov(σ̂²_i, σ̂²_j) = 2 Σ_s Σ_r cov(d_{i,s}, d_{j,r})² / (4 m_i² m_j² K_i K_j), with d the cluster-sum
+    differences and K their numbers. The covariances come from the exact filters of each component; the
+    1/f filter is cut at ``FLICKER_REACH_IN_CLUSTERS`` cluster lengths (and at ``length``), which the
+    stationary approximation of the nonstationary eq. (3) process needs anyway. For the non-overlapping
+    estimator each larger cluster size must be a multiple of each smaller one (octave τ).
+    """
+    estimator = _check_estimator(estimator)
+    length = check_positive_integer("length", length, minimum=3)
+    sizes = _check_tau_samples(tau_samples, length)
+    parts = _model_parts(model)
+    if not parts:
+        raise ValueError(f"model={model!r}: the model has no noise component")
+    d = float(model.flicker_d)
+    terms = length - 2 * sizes + 1 if estimator == "overlapping" else length // sizes - 1
+    taps = [
+        {
+            name: _positioned_taps(name, int(m), length, d, (FLICKER_REACH_IN_CLUSTERS + 2) * int(m))
+            for name in parts
+        }
+        for m in sizes
+    ]
+    count = len(sizes)
+    result = np.empty((count, count))
+    for i in range(count):
+        for j in range(i, count):
+            m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
+            low = min(-(len(taps[i][c][0]) - 1) - taps[i][c][1] + taps[j][c][1] for c in parts)
+            high = max(len(taps[j][c][0]) - 1 - taps[i][c][1] + taps[j][c][1] for c in parts)
+            if estimator == "overlapping":
+                delta = np.arange(low, high + 1)
+                pairs = np.minimum(K_j, K_i - delta) - np.maximum(0, -delta)
+            else:
+                if m_j % m_i:
+                    raise ValueError(
+                        f"tau_samples={sizes!r}: for the non-overlapping estimator each cluster size must "
+                        "divide the larger ones (use octave τ)"
+                    )
+                ratio = m_j // m_i
+                k = np.arange(low // m_i - 1, -(-high // m_i) + 2)
+                delta = k * m_i
+                r_low = np.maximum(0, -(k // ratio))
+                r_high = np.minimum(K_j - 1, (K_i - 1 - k) // ratio)
+                pairs = r_high - r_low + 1
+            pairs = np.maximum(pairs, 0)
+            covariance = np.zeros(len(delta))
+            for name, variance in parts.items():
+                g_i, o_i = taps[i][name]
+                g_j, o_j = taps[j][name]
+                cross = _cross_correlation(name, m_i, m_j, g_i, g_j)
+                index = delta + o_i - o_j + len(g_i) - 1  # lag l sits at l + len(g_i) − 1
+                inside = (index >= 0) & (index < len(cross))
+                covariance[inside] += variance * cross[index[inside]]
+            total = float(np.dot(pairs, covariance**2))
+            result[i, j] = result[j, i] = total / (2.0 * m_i**2 * m_j**2 * K_i * K_j)
+    return result
 
 
 def equivalent_degrees_of_freedom(
