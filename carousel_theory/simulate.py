@@ -1,0 +1,262 @@
+"""Synthetic gyro recordings: a declared noise model plus any set of undeclared effects.
+
+A recording is built axis by axis as
+
+    y_t = b + n_t + r_t + f_t + Σ_e s_e(t),
+
+with b the constant bias (TIM 2014 eq. (1)), n_t white noise (§II-B), r_t the rate random walk of eq. (2),
+f_t the 1/f noise of eq. (3), and s_e the signals of the undeclared effects of
+:mod:`carousel_theory.effects` (a warm-up transient, a temperature-driven bias, spikes, …). An effect
+that filters the white noise (``colored_noise``) replaces n_t by its filtered version, and
+``quantization`` rounds the final output. Every random number comes from the ``rng`` argument (a
+``numpy.random.Generator``), so one seed gives one recording, bit for bit.
+
+Besides the catalogue, :data:`OUTSIDE_CATALOGUE` holds signals that no catalogue effect describes
+(a sawtooth), used to check that the closed loop says "unexplained" rather than a wrong name.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from carousel_theory._validation import check_positive_integer, check_positive_real, check_real
+from carousel_theory.data import Recording, recording_from_arrays
+from carousel_theory.effects import CATALOGUE, check_effect_parameters
+from carousel_theory.processes import sample_flicker, sample_rate_random_walk, sample_white
+
+__all__ = [
+    "OUTSIDE_CATALOGUE",
+    "Injection",
+    "default_temperature_profile",
+    "parse_injection",
+    "simulate_recording",
+    "write_recording",
+]
+
+
+def _sawtooth(time: np.ndarray, amplitude: float = 1e-3, period: float = 60.0) -> np.ndarray:
+    """A zero-mean sawtooth of peak-to-peak ``amplitude`` and the given period (s): a slow ramp that
+    resets every period. Harmonics at every multiple of 1/period, so no single sinusoid explains it."""
+    phase = np.mod(time / period, 1.0)
+    return amplitude * (phase - 0.5)
+
+
+#: Signals outside the effect catalogue: name → (function(time, **parameters), default parameters).
+OUTSIDE_CATALOGUE: dict[str, tuple[Any, dict[str, float]]] = {
+    "sawtooth": (_sawtooth, {"amplitude": 1e-3, "period": 60.0}),
+}
+
+
+@dataclass(frozen=True)
+class Injection:
+    """One undeclared effect to add: a catalogue name (or a name of :data:`OUTSIDE_CATALOGUE`) and its
+    parameters (missing ones take the effect's defaults)."""
+
+    name: str
+    parameters: Mapping[str, float] = field(default_factory=dict)
+
+
+def parse_injection(text: str) -> Injection:
+    """Parse ``"name"`` or ``"name:key=value,key=value"`` (the command-line form) into an Injection."""
+    if not isinstance(text, str) or not text.strip():
+        raise ValueError(f"effect={text!r}: must be 'name' or 'name:key=value,...'")
+    name, _, rest = text.strip().partition(":")
+    parameters: dict[str, float] = {}
+    for item in filter(None, (part.strip() for part in rest.split(","))):
+        key, equals, value = item.partition("=")
+        if not equals:
+            raise ValueError(f"effect={text!r}: parameter {item!r} must have the form key=value")
+        try:
+            parameters[key.strip()] = float(value)
+        except ValueError:
+            raise ValueError(
+                f"effect={text!r}: parameter {key.strip()!r}={value!r} must be a number"
+            ) from None
+    injection = Injection(name.strip(), parameters)
+    _resolved_parameters(injection)
+    return injection
+
+
+def _resolved_parameters(injection: Injection) -> dict[str, float]:
+    if not isinstance(injection, Injection):
+        raise TypeError(f"effects: {injection!r} must be an Injection (or a 'name:key=value' string)")
+    if injection.name in OUTSIDE_CATALOGUE:
+        defaults = OUTSIDE_CATALOGUE[injection.name][1]
+        unknown = sorted(set(injection.parameters) - set(defaults))
+        if unknown:
+            raise ValueError(
+                f"effect {injection.name!r}: unknown parameters {unknown}; known: {sorted(defaults)}"
+            )
+        merged = {**defaults, **{k: float(check_real(k, v)) for k, v in injection.parameters.items()}}
+        return merged
+    if injection.name not in CATALOGUE or injection.name == "none":
+        known = sorted(set(CATALOGUE) - {"none"}) + sorted(OUTSIDE_CATALOGUE)
+        raise ValueError(f"effect={injection.name!r}: unknown effect; known: {known}")
+    return check_effect_parameters(injection.name, injection.parameters)
+
+
+def default_temperature_profile(time: np.ndarray) -> np.ndarray:
+    """A smooth, deterministic temperature history in °C: 25 °C plus a 0.5 K ramp over the record and a
+    0.8 K oscillation of period 0.6 × the record length (no exponential part, so that a temperature
+    effect is not confused with a warm-up transient by construction)."""
+    span = float(time[-1] - time[0]) if len(time) > 1 else 1.0
+    relative = (time - time[0]) / span
+    return 25.0 + 0.5 * relative + 0.8 * np.sin(2.0 * np.pi * relative / 0.6 + 0.3)
+
+
+def simulate_recording(
+    samples: int,
+    sample_rate: float,
+    *,
+    rng: np.random.Generator,
+    bias: float | Mapping[str, float] = 0.0,
+    white_variance: float = 1e-6,
+    rrw_variance: float = 0.0,
+    flicker_variance: float = 0.0,
+    flicker_d: float = 0.5,
+    axes: Sequence[str] = ("wx", "wy"),
+    effects: Sequence[Injection | str] = (),
+    temperature: Any = "auto",
+    samples_per_revolution: int | None = None,
+) -> Recording:
+    """A recording of ``samples`` samples at ``sample_rate`` Hz from a declared model plus effects.
+
+    Parameters
+    ----------
+    samples, sample_rate
+        Length and rate (Hz) of the recording.
+    rng
+        The only source of randomness.
+    bias
+        Constant bias b (rad/s) of TIM 2014 eq. (1), one value or one per axis.
+    white_variance, rrw_variance, flicker_variance, flicker_d
+        Per-sample variances (rad/s)² of white noise, of the rate-random-walk increments (eq. (2)) and of
+        the 1/f driving noise (eq. (3), order ``flicker_d``). Each axis gets independent draws.
+    axes
+        Names of the gyro axes.
+    effects
+        Undeclared effects: :class:`Injection` objects or strings ``"name:key=value,..."``.
+    temperature
+        ``"auto"``: the :func:`default_temperature_profile` column (always present, whether or not a
+        temperature effect is injected, so that a clean recording also has one); ``None``: no column;
+        or an array of °C.
+    samples_per_revolution
+        When given, a ``phi`` column of a uniform rotation with this many samples per revolution,
+        φ_i = 2π i / N (TIM 2014 eq. (6)); the rates stay those of a static sensor.
+
+    Returns
+    -------
+    carousel_theory.data.Recording
+    """
+    samples = check_positive_integer("samples", samples, minimum=2)
+    sample_rate = float(check_positive_real("sample_rate", sample_rate))
+    if not isinstance(rng, np.random.Generator):
+        raise TypeError(f"rng={rng!r}: must be a numpy.random.Generator (np.random.default_rng(seed))")
+    white_variance = float(check_positive_real("white_variance", white_variance, allow_zero=True))
+    rrw_variance = float(check_positive_real("rrw_variance", rrw_variance, allow_zero=True))
+    flicker_variance = float(check_positive_real("flicker_variance", flicker_variance, allow_zero=True))
+    if isinstance(axes, str) or not axes or not all(isinstance(a, str) and a for a in axes):
+        raise TypeError(f"axes={axes!r}: must be a non-empty sequence of axis names")
+    if len(set(axes)) != len(axes):
+        raise ValueError(f"axes={axes!r}: names must be distinct")
+    if isinstance(bias, Mapping):
+        missing = [a for a in axes if a not in bias]
+        if missing:
+            raise ValueError(f"bias={bias!r}: no value for axes {missing}")
+        biases = {a: float(check_real(f"bias[{a!r}]", bias[a])) for a in axes}
+    else:
+        biases = {a: float(check_real("bias", bias)) for a in axes}
+    injections = [parse_injection(e) if isinstance(e, str) else e for e in effects]
+    resolved = [(i.name, _resolved_parameters(i)) for i in injections]
+    if samples_per_revolution is not None:
+        samples_per_revolution = check_positive_integer("samples_per_revolution", samples_per_revolution, 3)
+    time = np.arange(samples, dtype=np.float64) / sample_rate
+    if isinstance(temperature, str):
+        if temperature != "auto":
+            raise ValueError(f"temperature={temperature!r}: must be 'auto', None or an array")
+        temperature_column: np.ndarray | None = default_temperature_profile(time)
+    elif temperature is None:
+        temperature_column = None
+    else:
+        temperature_column = np.asarray(temperature, dtype=np.float64)
+        if temperature_column.shape != (samples,) or not np.all(np.isfinite(temperature_column)):
+            raise ValueError(f"temperature: must be {samples} finite values in °C")
+    if temperature_column is None and any(name == "temperature" for name, _ in resolved):
+        raise ValueError("effects: a 'temperature' effect needs a temperature column (temperature='auto')")
+
+    rates: dict[str, np.ndarray] = {}
+    for axis in axes:
+        white = (
+            sample_white(samples, rng=rng, variance=white_variance) if white_variance else np.zeros(samples)
+        )
+        # Effects that filter the white noise act on it before it joins the other components.
+        for name, parameters in resolved:
+            if name in CATALOGUE and CATALOGUE[name].kind == "noise_filter":
+                white = CATALOGUE[name].inject(white, time, temperature_column, rng, parameters)
+        signal = biases[axis] + white
+        if rrw_variance:
+            signal = signal + sample_rate_random_walk(samples, rng=rng, variance=rrw_variance)
+        if flicker_variance:
+            signal = signal + sample_flicker(samples, rng=rng, d=flicker_d, variance=flicker_variance)
+        for name, parameters in resolved:
+            if name in OUTSIDE_CATALOGUE:
+                signal = signal + OUTSIDE_CATALOGUE[name][0](time, **parameters)
+            elif CATALOGUE[name].kind == "additive":
+                signal = signal + CATALOGUE[name].inject(
+                    np.zeros(samples), time, temperature_column, rng, parameters
+                )
+        # Output effects (rounding) act last, on the complete signal.
+        for name, parameters in resolved:
+            if name in CATALOGUE and CATALOGUE[name].kind == "output":
+                signal = CATALOGUE[name].inject(signal, time, temperature_column, rng, parameters)
+        rates[axis] = signal
+    angle = None
+    if samples_per_revolution is not None:
+        angle = 2.0 * np.pi * (np.arange(1, samples + 1) % samples_per_revolution) / samples_per_revolution
+    described = ", ".join(name for name, _ in resolved) or "none"
+    return recording_from_arrays(
+        rates,
+        time=time,
+        sample_rate=sample_rate,
+        temperature=temperature_column,
+        angle=angle,
+        source=f"simulated ({described})",
+    )
+
+
+def write_recording(recording: Recording, path: str | Path) -> Path:
+    """Write a recording as CSV (header ``t,<axes>[,temp][,phi]``) or NPZ (the same keys plus ``fs``),
+    chosen by the extension of ``path``. Refuses to overwrite a directory."""
+    if not isinstance(recording, Recording):
+        raise TypeError(f"recording={recording!r}: must be a carousel_theory.data.Recording")
+    if not isinstance(path, (str, Path)):
+        raise TypeError(f"path={path!r}: must be a str or pathlib.Path")
+    path = Path(path)
+    if path.is_dir():
+        raise ValueError(f"{path}: is a directory; give a file name ending in .csv or .npz")
+    columns: dict[str, np.ndarray] = {"t": recording.time, **recording.rates}
+    if recording.temperature is not None:
+        columns["temp"] = recording.temperature
+    if recording.angle is not None:
+        columns["phi"] = recording.angle
+    suffix = path.suffix.lower()
+    if suffix == ".npz":
+        np.savez(path, fs=np.float64(recording.sample_rate), **columns)
+    elif suffix == ".csv":
+        # %.17g round-trips float64: reading the file back gives the same numbers bit for bit.
+        np.savetxt(
+            path,
+            np.column_stack(list(columns.values())),
+            fmt="%.17g",
+            delimiter=",",
+            header=",".join(columns),
+            comments="",
+        )
+    else:
+        raise ValueError(f"{path}: unknown extension {path.suffix!r}; must be .csv or .npz")
+    return path
