@@ -266,11 +266,15 @@ def overlapping_allan_variance_exact(n: int, m: int, C: Any = 1) -> Any:
     tau = 2**m
     windows = 2**n - 2 * tau + 1
     total = 0
+    # prefix sums of ±1 stay below 2^n in magnitude: int32 is exact for every n this accepts in memory
+    prefix = np.zeros(2**n + 1, dtype=np.int32 if n < 31 else np.int64)
     for i in range(1, n + 1):
-        prefix = np.concatenate(([0], np.cumsum(_twice_column(n, i), dtype=np.int64)))
+        np.cumsum(_twice_column(n, i), out=prefix[1:])
         # (sum of 2K over the later window) − (sum over the earlier window)
         change = prefix[2 * tau :] - 2 * prefix[tau:-tau] + prefix[: -2 * tau]
-        total += int(np.sum(change * change))
+        # exact sum of squares for every n: count each value (|change| ≤ 2τ), square in Python integers
+        counts = np.bincount(np.abs(change))
+        total += sum(int(count) * value * value for value, count in enumerate(counts.tolist()) if count)
     # a difference of means of K is change / (2τ)
     expectation_unit = sp.Rational(total, 4 * tau**2 * 2 * windows)
     return _evaluate(C_symbol**2 * expectation_unit, C)
