@@ -68,8 +68,8 @@ PROCESS_VARIANCE = C_symbol**2 * n_symbol / 4
 GRAM_SCALE = 2 ** (n_symbol - 2)
 #: Var of the MVUE ‖K⁺R‖²/n of C² for Gaussian x: 2C⁴/n.
 MVUE_VARIANCE = 2 * C_symbol**4 / n_symbol
-#: Var of the unbiased Allan estimator 2σ_A²(2^m) for Gaussian x, with p = n − m averaged bins'
-#: worth of innovations: x_i enters 2^{i−1} of the 2^p − 1 differences, so
+#: Var of the unbiased Allan estimator 2σ_A²(2^m) for Gaussian x. With p = n − m, the 2^p − 1 bin
+#: differences involve x_1 … x_p, and x_i enters 2^{i−1} of them, so
 #: Var = 2C⁴ Σ 4^{i−1} / (2^p − 1)² = 2C⁴ (2^p + 1) / (3 (2^p − 1)).
 ALLAN_ESTIMATOR_VARIANCE = (
     2 * C_symbol**4 * (2 ** (n_symbol - m_symbol) + 1) / (3 * (2 ** (n_symbol - m_symbol) - 1))
@@ -88,13 +88,14 @@ def _physical_memory_bytes() -> int:
         return 8 * 2**30
 
 
-def _check_order(n: Any, columns: int = 1) -> int:
-    """Validate the order n of Algorithm 1 and that a 2^n × ``columns`` float64 output fits in memory."""
+def _check_order(n: Any, columns: int | None = 1) -> int:
+    """Validate the order n of Algorithm 1 and, before anything is allocated, that a 2^n × ``columns``
+    float64 output (``columns=None``: 2^n × n, the size of K) fits in half the physical memory."""
     value = check_integer("n", n)
     if value < MINIMUM_ORDER:
         raise ValueError(f"n={n!r}: must be an integer >= {MINIMUM_ORDER} (TIM 2014 Algorithm 1 takes 1 < n)")
     limit = int(_physical_memory_bytes() * _MEMORY_SHARE)
-    width = value if columns < 0 else columns
+    width = value if columns is None else columns
     needed = (2**value) * width * _BYTES_PER_VALUE if value < 62 else float("inf")
     if needed > limit:
         raise ValueError(
@@ -183,7 +184,7 @@ def gray_matrix(n: int) -> np.ndarray:
 
     K + ½ is the binary reflected Gray code matrix (row r = g(r), most significant bit first).
     """
-    n = _check_order(n, columns=-1)
+    n = _check_order(n, columns=None)
     matrix = np.empty((2**n, n), dtype=np.float64)
     for i in range(1, n + 1):
         matrix[:, i - 1] = gray_column(n, i)
@@ -312,7 +313,7 @@ def covariance_entry(n: int, r: int, s: int) -> Fraction:
 
 def pseudoinverse(n: int) -> np.ndarray:
     """K⁺ = (KᵀK)⁻¹Kᵀ = 2^{2−n} Kᵀ (n × 2^n), since KᵀK = 2^{n−2} I (TIM 2014 eq. (31) for n = 2)."""
-    n = _check_order(n, columns=-1)
+    n = _check_order(n, columns=None)
     scale = float(1 / GRAM_SCALE.subs(n_symbol, n))
     return scale * gray_matrix(n).T
 

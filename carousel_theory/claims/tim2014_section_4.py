@@ -91,14 +91,15 @@ def _check_table_1() -> Verdict:
     return Verdict(Status.FAILED, f"Table I differs: computed {computed}, a_1..8 = {a8}.")
 
 
-def _symbolic_R4() -> list[sp.Expr]:
+def _symbolic_R4() -> tuple[list[sp.Expr], tuple[sp.Symbol, sp.Symbol]]:
+    """R_4 = K [x1 x2]ᵀ with symbolic x1, x2, and the two symbols."""
     x1, x2 = sp.symbols("x1 x2")
     K = sp.Matrix(gray_matrix(2).tolist()).applyfunc(sp.nsimplify)
     return list(K * sp.Matrix([x1, x2])), (x1, x2)
 
 
 def _check_table_2() -> Verdict:
-    (R, (x1, x2)) = _symbolic_R4()
+    R, (x1, x2) = _symbolic_R4()
     half = sp.Rational(1, 2)
     printed = [-half * x1 - half * x2, -half * x1 + half * x2, half * x1 + half * x2, half * x1 - half * x2]
     if all(sp.simplify(a - b) == 0 for a, b in zip(R, printed, strict=True)):
@@ -244,7 +245,7 @@ def _check_kkt_columns() -> Verdict:
         return Verdict(
             Status.ERRATUM,
             "Literally false: column 1 of K K^T for n = 2 is [1/2, 0, -1/2, 0], differences of size 1/2, "
-            "not 1. What holds (all columns for n <= 10, 7 columns each for n <= 16; proofs/proof_graycode_"
+            "not 1. What holds (all columns for n <= 10, up to 7 columns for n <= 16; proofs/proof_graycode_"
             "covariance.py): (K K^T)[r, s] = -S[r XOR s]/2, so every column changes by exactly 1/2.",
             corrected="|(K Kᵀ)‾(τ)_{j+1,s} − (K Kᵀ)‾(τ)_{j,s}| = ½ for τ = 2^m; "
             "the columns of 2KKᵀ = −S[r ⊕ s] "
