@@ -53,6 +53,7 @@ __all__ = [
     "flicker_averaged_bin_variance",
     "flicker_averaged_bin_variance_exact",
     "flicker_bin_variances",
+    "flicker_bin_variances_high_precision",
     "flicker_carouselled_bin_variance",
     "repeated_weights_bin_variances",
     "weighted_sum_variance",
@@ -246,14 +247,17 @@ def _mp_order(d: Any) -> mpmath.mpf:
     return mpmath.mpf(d)  # a float is taken at its exact binary value
 
 
-def _flicker_bin_variance_mp(d: Any, N: int, k: int, digits: int, carouselled: bool) -> mpmath.mpf:
-    """N⁻² Σ_{j<kN} |h_j|² with h_j = z̄ h_{j−1} + ψ_j − ψ_{j−N} (z = e^{2πi/N}, or z = 1 when averaged).
+def _flicker_bin_variances_mp(d: Any, N: int, k_max: int, digits: int, carouselled: bool) -> list[mpmath.mpf]:
+    """Bins k = 1 … k_max: N⁻² Σ_{j<kN} |h_j|² with h_j = z̄ h_{j−1} + ψ_j − ψ_{j−N} (z = e^{2πi/N},
+    or z = 1 when averaged, where h_j = Ψ_j − Ψ_{j−N}).
 
     The recursion multiplies by |z̄| = 1, so rounding errors add up and are never amplified; the
-    guard digits cover log10(kN) digits of accumulated rounding with a wide margin.
+    guard digits cover the log10(kN) digits of accumulated rounding, and the cancellation in
+    Ψ_j − Ψ_{j−N}, with a wide margin.
     """
-    length = k * N
+    length = k_max * N
     guard = _GUARD_DIGITS + len(str(length))
+    bins: list[mpmath.mpf] = []
     with mpmath.workdps(digits + guard):
         order = _mp_order(d)
         psi = [mpmath.mpf(1)]
@@ -261,24 +265,40 @@ def _flicker_bin_variance_mp(d: Any, N: int, k: int, digits: int, carouselled: b
             psi.append(psi[-1] * (j - 1 + order) / j)  # TIM 2014 eq. (3): ψ_j = ψ_{j−1}(j − 1 + d)/j
         zero = mpmath.mpf(0)
         total = zero
+        scale = mpmath.mpf(N) ** 2
         if carouselled:
             rotate_cos, rotate_sin = mpmath.cospi(mpmath.mpf(2) / N), mpmath.sinpi(mpmath.mpf(2) / N)
-            real, imaginary = zero, zero
-            for j in range(length):
-                step = psi[j] - (psi[j - N] if j >= N else zero)
+        real, imaginary = zero, zero
+        for j in range(length):
+            step = psi[j] - (psi[j - N] if j >= N else zero)
+            if carouselled:
                 real, imaginary = (
                     rotate_cos * real + rotate_sin * imaginary + step,
                     rotate_cos * imaginary - rotate_sin * real,
                 )
                 total += real * real + imaginary * imaginary
-        else:
-            window = zero
-            for j in range(length):
-                window += psi[j] - (psi[j - N] if j >= N else zero)  # Ψ_j − Ψ_{j−N}
-                total += window * window
-        value = total / (N * N)
+            else:
+                real += step  # Ψ_j − Ψ_{j−N}
+                total += real * real
+            if (j + 1) % N == 0:
+                bins.append(total / scale)
     with mpmath.workdps(digits):
-        return +value
+        return [+value for value in bins]
+
+
+def flicker_bin_variances_high_precision(
+    d: Any, N: int, k_max: int, method: str = "averaged", digits: int = 50
+) -> list[mpmath.mpf]:
+    """:func:`flicker_bin_variances` at ``digits`` significant digits (mpmath), bins k = 1 … k_max.
+
+    O(k_max N) operations at that precision, by the one-step recursion of the module docstring.
+    """
+    d = check_fractional_order("d", d)
+    N = check_positive_integer("N", N)
+    k_max = check_positive_integer("k_max", k_max)
+    method = _check_method(method)
+    digits = check_positive_integer("digits", digits)
+    return _flicker_bin_variances_mp(d, N, k_max, digits, carouselled=method == "carouselled")
 
 
 def flicker_averaged_bin_variance(d: Any, N: int, k: int, digits: int | None = None) -> Any:
@@ -294,7 +314,7 @@ def flicker_averaged_bin_variance(d: Any, N: int, k: int, digits: int | None = N
     k = check_positive_integer("k", k)
     digits = _check_digits(digits)
     if digits is not None:
-        return _flicker_bin_variance_mp(d, N, k, digits, carouselled=False)
+        return _flicker_bin_variances_mp(d, N, k, digits, carouselled=False)[-1]
     return float(flicker_bin_variances(d, N, k, "averaged")[-1])
 
 
@@ -311,7 +331,7 @@ def flicker_carouselled_bin_variance(d: Any, N: int, k: int, digits: int | None 
     k = check_positive_integer("k", k)
     digits = _check_digits(digits)
     if digits is not None:
-        return _flicker_bin_variance_mp(d, N, k, digits, carouselled=True)
+        return _flicker_bin_variances_mp(d, N, k, digits, carouselled=True)[-1]
     return float(flicker_bin_variances(d, N, k, "carouselled")[-1])
 
 

@@ -8,8 +8,9 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
+import scipy.special
 import sympy as sp
-from hypothesis import example, given
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from carousel_theory import propagation
@@ -17,6 +18,7 @@ from carousel_theory.propagation import (
     flicker_averaged_bin_variance,
     flicker_averaged_bin_variance_exact,
     flicker_bin_variances,
+    flicker_bin_variances_high_precision,
     flicker_carouselled_bin_variance,
     repeated_weights_bin_variances,
     weighted_sum_variance,
@@ -194,6 +196,21 @@ def test_float64_against_direct_convolution_at_N_10_thousand():
     assert averaged[0] == pytest.approx(np.sum(direct_averaged[:N] ** 2), rel=1e-12)
 
 
+def test_all_bins_at_high_precision_equal_single_bins():
+    for method, single in (
+        ("averaged", flicker_averaged_bin_variance),
+        ("carouselled", flicker_carouselled_bin_variance),
+    ):
+        with mpmath.workdps(40):
+            every = flicker_bin_variances_high_precision(Fraction(2, 5), 7, 4, method, digits=40)
+            assert len(every) == 4
+            for k in range(1, 5):
+                assert (
+                    abs(every[k - 1] - single(Fraction(2, 5), 7, k, digits=40))
+                    <= mpmath.mpf(10) ** -39 * every[k - 1]
+                )
+
+
 # --- properties --------------------------------------------------------------------------------------
 
 
@@ -233,6 +250,31 @@ def test_bin_variances_equal_variance_of_zero_padded_weights(d, N, k, method):
     got = flicker_bin_variances(d, N, k, method)
     assert got[-1] == pytest.approx(expected, rel=1e-10, abs=1e-15)
     assert np.all(np.diff(got) >= -1e-15 * got[-1])  # each bin adds squares: never decreases
+
+
+@pytest.mark.slow
+@settings(max_examples=20)  # each example costs up to 2·10⁶ terms
+@given(d=st.floats(0.01, 0.99), N=st.integers(2, 10**6), k=st.integers(1, 2))
+@example(d=0.5, N=10**6, k=2)
+@example(d=0.99, N=2, k=1)
+def test_large_N_against_independent_linear_time_sums(d, N, k):
+    """O(kN) checks without FFT: averaged via Ψ_j = Γ(j+1+d)/(Γ(j+1)Γ(d+1)) (log-Gamma), carouselled via
+    h_j = z̄^j Σ_{m≤j} z^m (ψ_m − ψ_{m−N}) (the recursion h_j = z̄ h_{j−1} + ψ_j − ψ_{j−N} unrolled)."""
+    length = k * N
+    j = np.arange(length)
+    cumulative = np.exp(
+        scipy.special.gammaln(j + 1 + d) - scipy.special.gammaln(j + 1) - scipy.special.gammaln(d + 1)
+    )
+    window = cumulative - np.concatenate([np.zeros(N), cumulative[:-N]])[:length]
+    averaged = np.sum(window**2) / N**2
+    assert flicker_bin_variances(d, N, k, "averaged")[-1] == pytest.approx(averaged, rel=1e-7)
+    psi = np.diff(np.concatenate([[0.0], cumulative]))  # ψ_m = Ψ_m − Ψ_{m−1}
+    psi[0] = 1.0
+    step = psi - np.concatenate([np.zeros(N), psi[:-N]])[:length]
+    angle = 2 * np.pi * (j % N) / N
+    rotated = np.cumsum(step * np.exp(1j * angle))
+    carouselled = np.sum(np.abs(rotated) ** 2) / N**2
+    assert flicker_bin_variances(d, N, k, "carouselled")[-1] == pytest.approx(carouselled, rel=1e-6)
 
 
 @given(d=st.fractions(Fraction(1, 100), Fraction(99, 100)), N=st.integers(1, 300), k=st.integers(1, 3))
@@ -296,6 +338,24 @@ INVALID_CALLS = [
         "digits=5.0",
     ),
     ("exact float d", lambda: flicker_averaged_bin_variance_exact(0.5, 4, 1), TypeError, "exact rational"),
+    (
+        "high precision digits=0",
+        lambda: flicker_bin_variances_high_precision(0.5, 4, 2, digits=0),
+        ValueError,
+        "digits=0",
+    ),
+    (
+        "high precision method",
+        lambda: flicker_bin_variances_high_precision(0.5, 4, 2, "sum"),
+        ValueError,
+        "method='sum'",
+    ),
+    (
+        "high precision k_max",
+        lambda: flicker_bin_variances_high_precision(0.5, 4, -1),
+        ValueError,
+        "k_max=-1",
+    ),
     (
         "exact k bool",
         lambda: flicker_averaged_bin_variance_exact(Fraction(1, 2), 4, True),

@@ -35,6 +35,7 @@ from carousel_theory.processes import (
 from carousel_theory.propagation import (
     flicker_averaged_bin_variance,
     flicker_bin_variances,
+    flicker_bin_variances_high_precision,
     flicker_carouselled_bin_variance,
     repeated_weights_bin_variances,
     weighted_sum_variance,
@@ -262,13 +263,9 @@ def _check_averaged_faster() -> Verdict:
     holds = True
     for order in (Fraction(1, 4), Fraction(1, 2), Fraction(3, 4)):
         increase = {}
-        for method, function in (
-            ("averaged", flicker_averaged_bin_variance),
-            ("carouselled", flicker_carouselled_bin_variance),
-        ):
-            first = function(order, SIMULATION_N, 1, digits=DIGITS)
-            last = function(order, SIMULATION_N, 50, digits=DIGITS)
-            increase[method] = last - first
+        for method in ("averaged", "carouselled"):
+            every = flicker_bin_variances_high_precision(order, SIMULATION_N, 50, method, digits=DIGITS)
+            increase[method] = every[-1] - every[0]
         holds = holds and increase["averaged"] > 10 * increase["carouselled"]
         rows.append(
             f"d = {order}: {mpmath.nstr(increase['averaged'], 4)} vs "
@@ -290,11 +287,11 @@ def _check_logarithmic() -> Verdict:
     N = SIMULATION_N
     growth = sp.lambdify(symbols.k, AVERAGED_GROWTH_AT_HALF, "mpmath")
     rows = []
+    every = flicker_bin_variances_high_precision(Fraction(1, 2), N, 160, "averaged", digits=DIGITS)
     with mpmath.workdps(DIGITS):
         for bin_number in (20, 40, 80):
-            low = flicker_averaged_bin_variance(Fraction(1, 2), N, bin_number, digits=DIGITS)
-            high = flicker_averaged_bin_variance(Fraction(1, 2), N, 2 * bin_number, digits=DIGITS)
-            rows.append((bin_number, (high - low) / (growth(2 * bin_number) - growth(bin_number))))
+            increase = every[2 * bin_number - 1] - every[bin_number - 1]
+            rows.append((bin_number, increase / (growth(2 * bin_number) - growth(bin_number))))
     excess = [ratio - 1 for _, ratio in rows]
     converging = all(e > 0 for e in excess) and excess[1] < 0.6 * excess[0] and excess[2] < 0.6 * excess[1]
     text = ", ".join(f"k = {b}: {mpmath.nstr(r, 6)}" for b, r in rows)
