@@ -1,0 +1,75 @@
+"""Growing-state Kalman filter of SJ 2012 §IV-A versus the exact fast predictor, same data, same run.
+
+Run: ``python benchmarks/bench_predictors.py [--full]``. Prints the time of each and the ratio, and the
+largest difference of forecasts and variances (they must agree to 1e-9).
+
+The Kalman filter costs O((n + h)³) time and O((n + h)²) memory; at 10⁴ + 10⁴ its covariance alone
+is 3.2 GB and a run takes hours, so by default its time there is extrapolated from the measured
+times at 1000 + 1000, 2000 + 2000 and 3000 + 3000 by a fitted power law (the exponent is printed).
+``--full`` runs it for real (needs about 4 GB of memory and a long time).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from carousel_theory.fast_prediction import fast_kalman_forecast
+from carousel_theory.long_memory import fractional_integral
+from carousel_theory.prediction import kalman_forecast
+
+
+def _best_time(function, repeats: int) -> tuple[float, object]:
+    best = float("inf")
+    result = None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = function()
+        best = min(best, time.perf_counter() - start)
+    return best, result
+
+
+def _compare(n: int, white: float, rng: np.random.Generator, run_kalman: bool) -> tuple[float | None, float]:
+    y = fractional_integral(rng.standard_normal(n), 0.5) + np.sqrt(white) * rng.standard_normal(n)
+    options = {"d": 0.5, "driving_variance": 1.0, "white_variance": white}
+    fast_time, fast = _best_time(lambda: fast_kalman_forecast(y, n, **options), repeats=5)
+    if not run_kalman:
+        return None, fast_time
+    kalman_time, kalman = _best_time(lambda: kalman_forecast(y, n, **options), repeats=1)
+    mean_gap = float(np.abs(fast.mean - kalman.mean).max())
+    variance_gap = float(np.abs(fast.bias_variance - kalman.bias_variance).max())
+    print(
+        f"  {n:>6d} + {n:<6d} σ_v² = {white:<4g} KF {kalman_time:9.3f} s   fast {fast_time * 1e3:9.2f} ms   "
+        f"ratio {kalman_time / fast_time:10.0f}×   max |Δmean| {mean_gap:.1e}, max |Δvar| {variance_gap:.1e}"
+    )
+    return kalman_time, fast_time
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--full", action="store_true", help="also run the Kalman filter at 10⁴ + 10⁴")
+    args = parser.parse_args()
+    rng = np.random.default_rng(2012)
+    for white in (0.0, 0.5):
+        kind = "Table I setting: fractional-difference whitening" if white == 0 else "dense GLS"
+        print(f"σ_v² = {white} ({kind})")
+        sizes = (1000, 2000, 3000)
+        measured = [_compare(n, white, rng, run_kalman=True) for n in sizes]
+        exponent, intercept = np.polyfit(np.log(sizes), np.log([m[0] for m in measured]), 1)
+        large = 10_000
+        if args.full:
+            _compare(large, white, rng, run_kalman=True)
+        else:
+            _, fast_time = _compare(large, white, rng, run_kalman=False)
+            extrapolated = float(np.exp(intercept) * large**exponent)
+            print(
+                f"  {large:>6d} + {large:<6d} σ_v² = {white:<4g} KF ≈ {extrapolated:9.0f} s (extrapolated, "
+                f"time ∝ n^{exponent:.2f})   fast {fast_time * 1e3:9.2f} ms   ratio ≈ "
+                f"{extrapolated / fast_time:10.0f}×"
+            )
+
+
+if __name__ == "__main__":
+    main()
