@@ -138,7 +138,10 @@ def _check_timing(time: np.ndarray, source: str, irregular: str) -> tuple[float,
     if notes:
         # The nominal rate of irregular data is the mean rate, not the median: it keeps duration right.
         return (len(time) - 1) / float(time[-1] - time[0]), False, tuple(notes)
-    return 1.0 / nominal, True, ()
+    # The mean rate over the whole record, rounded to 9 significant digits: float timestamps such as
+    # i/100 carry rounding that would otherwise leak into every τ (0.00999999999999801 s).
+    rate = (len(time) - 1) / float(time[-1] - time[0])
+    return float(f"{rate:.9g}"), True, ()
 
 
 def recording_from_arrays(

@@ -1,0 +1,312 @@
+"""``carousel-theory fit``: identify a noise model per gyro column, with standard errors, in the field's and
+TIM 2014 Table III's units; optionally a plot and a markdown report over several recordings."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy import stats
+
+from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording, result_as_json
+from carousel_theory.fitting import COMPONENTS, FitResult, fit_noise_model
+from carousel_theory.units import BIAS_INSTABILITY_FACTOR, bias_instability_from_allan_minimum
+
+#: Rows of the Table III-style summary: (key, label, unit, source of the value).
+PAPER_ROWS = (
+    ("white_variance_at_1s", "σ_WN² (τ = 1 s)", "(rad/s)²"),
+    ("rrw_variance_per_s", "σ_q²", "(rad/s)²/s"),
+    ("bias_instability", "bias instability (model min σ_A / 0.664)", "rad/s"),
+)
+FIELD_ROWS = (
+    ("angle_random_walk_deg_per_sqrt_h", "angle random walk", "°/√h"),
+    ("rate_random_walk_deg_per_h_per_sqrt_h", "rate random walk", "°/h/√h"),
+    ("bias_instability_deg_per_h", "bias instability", "°/h"),
+    ("bias_deg_per_h", "bias (record mean)", "°/h"),
+)
+
+
+def _components(text: str) -> tuple[str, ...]:
+    names = tuple(name.strip() for name in text.split(",") if name.strip())
+    unknown = [name for name in names if name not in COMPONENTS]
+    if unknown or not names:
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: must be comma-separated names from {', '.join(COMPONENTS)}"
+        )
+    return names
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "fit",
+        help="identify white noise, rate random walk, 1/f noise and bias per gyro column, with errors",
+        description=(
+            "Fit a noise model to every gyro column of each DATA file by generalized least squares on the "
+            "octave Allan variance (model-based covariance across τ). Prints the model in the field's "
+            "units (°/√h, °/h/√h, °/h) and in TIM 2014 Table III's (σ_WN² at τ = 1 s, σ_q², bias "
+            "instability), with standard errors; --markdown writes a Table III-style report with the "
+            "run-to-run consistency."
+        ),
+    )
+    parser.add_argument("data", type=Path, nargs="+", metavar="DATA", help="recording(s) (.csv or .npz)")
+    add_recording_arguments(parser)
+    parser.add_argument(
+        "--model",
+        type=_components,
+        default=("white", "rrw"),
+        metavar="C[,C...]",
+        help=f"components from {', '.join(COMPONENTS)} (default white,rrw)",
+    )
+    parser.add_argument(
+        "--flicker-d", type=float, help="fix the 1/f order d (default: fitted when flicker is used)"
+    )
+    parser.add_argument(
+        "--tau-min", type=float, help="smallest τ (s) in the fit (e.g. above the sensor's filter)"
+    )
+    parser.add_argument("--tau-max", type=float, help="largest τ (s) in the fit")
+    parser.add_argument("--iterations", type=int, default=3, help="covariance re-evaluations (default 3)")
+    parser.add_argument(
+        "--markdown", type=Path, metavar="FILE.md", help="write a Table III-style markdown report"
+    )
+    parser.set_defaults(handler=run)
+
+
+def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitResult]]:
+    recording = read_recording(path, args)
+    tau_range = None
+    if args.tau_min is not None or args.tau_max is not None:
+        tau_range = (args.tau_min or 1.0 / recording.sample_rate, args.tau_max or recording.duration)
+    fits = {}
+    for name, rates in recording.rates.items():
+        fits[name] = fit_noise_model(
+            rates,
+            recording.sample_rate,
+            args.model,
+            flicker_d=args.flicker_d,
+            tau_range=tau_range,
+            estimator=args.estimator,
+            iterations=args.iterations,
+        )
+    return recording, fits
+
+
+def _measured_bias_instability(fit: FitResult) -> tuple[float, float, float, float]:
+    """(min ADEV, its τ, B low, B high): the data's minimum Allan deviation and its interval, / 0.664."""
+    allan = fit.allan
+    best = int(np.argmin(allan.avar))
+    return (
+        math.sqrt(allan.avar[best]),
+        float(allan.tau[best]),
+        bias_instability_from_allan_minimum(math.sqrt(allan.ci_low[best])),
+        bias_instability_from_allan_minimum(math.sqrt(allan.ci_high[best])),
+    )
+
+
+def fit_as_json(fit: FitResult) -> dict[str, Any]:
+    model = fit.model
+    return {
+        "model": {
+            "sample_rate": model.sample_rate,
+            "bias": model.bias,
+            "white_variance": model.white_variance,
+            "rrw_variance": model.rrw_variance,
+            "flicker_variance": model.flicker_variance,
+            "flicker_d": model.flicker_d,
+            "quantization": model.quantization,
+        },
+        "standard_errors": dict(fit.standard_errors),
+        "field_units": {key: list(value) for key, value in fit.field_units().items()},
+        "paper_units": {key: list(value) for key, value in fit.paper_units().items()},
+        "chi_square": fit.chi_square,
+        "degrees_of_freedom": fit.degrees_of_freedom,
+        "at_bound": list(fit.at_bound),
+        "method": fit.method,
+        "allan": result_as_json(fit.allan),
+        "model_avar": fit.model_avar.tolist(),
+        "used": fit.used.tolist(),
+    }
+
+
+def _format(value: float, error: float) -> str:
+    if not math.isfinite(error):
+        return f"{value:.3g} ± ∞"
+    return f"{value:.3g} ± {error:.2g}"
+
+
+def _consistency(values: list[tuple[float, float]]) -> str:
+    """Weighted mean, χ² of the runs about it, and its p-value (are the runs one population?)."""
+    estimates = np.array([v for v, _ in values])
+    errors = np.array([e for _, e in values])
+    if len(values) < 2 or not np.all(np.isfinite(errors)) or np.any(errors <= 0):
+        return "—"
+    weights = 1.0 / errors**2
+    mean = float(np.sum(weights * estimates) / np.sum(weights))
+    chi_square = float(np.sum(((estimates - mean) / errors) ** 2))
+    p_value = float(stats.chi2.sf(chi_square, len(values) - 1))
+    spread = float(np.std(estimates, ddof=1))
+    return f"{mean:.3g} (spread {spread:.2g}; χ²={chi_square:.3g}/{len(values) - 1}, p={p_value:.2g})"
+
+
+def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argparse.Namespace) -> str:
+    """The Table III-style report: one table per recording and a run-to-run consistency table."""
+    first = next(iter(files[0][1].values()))
+    lines = [
+        "<!-- generated by `carousel-theory fit ... --markdown`; do not edit -->",
+        "",
+        "# Noise model of the recordings",
+        "",
+        f"Command: `carousel-theory fit {' '.join(str(path) for path in args.data)} "
+        f"--model {','.join(args.model)}"
+        + (f" --tau-min {args.tau_min:g}" if args.tau_min is not None else "")
+        + (f" --tau-max {args.tau_max:g}" if args.tau_max is not None else "")
+        + (f" --flicker-d {args.flicker_d:g}" if args.flicker_d is not None else "")
+        + f" --estimator {args.estimator} --iterations {args.iterations} --markdown {args.markdown}`",
+        "",
+        f"Method: {first.method}. Values are estimate ± one standard error.",
+        "",
+        "Conventions (see `carousel_theory.units`): σ_WN² (τ = 1 s) is the variance of a 1-s average of "
+        "the white noise, σ²/f_s, numerically the squared angle random walk in rad²/s; σ_q² is the "
+        "rate-random-walk increment variance per second, σ_q,sample²·f_s = K²; the bias instability is the "
+        f"minimum of the Allan deviation divided by √(2 ln 2/π) = {BIAS_INSTABILITY_FACTOR:.4f} (IEEE Std "
+        "952), taken from the fitted model's curve and, separately, from the data's octave points (with "
+        "the χ² interval of that point). The bias is the record mean; its standard error comes from the "
+        "fitted model (random walk started at zero at the first sample).",
+        "",
+    ]
+    axes = list(files[0][1])
+    for recording, fits in files:
+        lines += [f"## {Path(recording.source).name}", ""]
+        lines += [
+            f"{len(recording)} samples at {recording.sample_rate:g} Hz ({recording.duration / 3600:.3g} h).",
+            "",
+            "| parameter | unit | " + " | ".join(axes) + " |",
+            "|---|---|" + "---|" * len(axes),
+        ]
+        paper = {axis: fit.paper_units() for axis, fit in fits.items()}
+        field = {axis: fit.field_units() for axis, fit in fits.items()}
+        for key, label, unit in PAPER_ROWS:
+            if all(key in paper[a] for a in axes):
+                lines.append(
+                    f"| {label} | {unit} | " + " | ".join(_format(*paper[a][key]) for a in axes) + " |"
+                )
+        for key, label, unit in FIELD_ROWS:
+            if all(key in field[a] for a in axes):
+                lines.append(
+                    f"| {label} | {unit} | " + " | ".join(_format(*field[a][key]) for a in axes) + " |"
+                )
+        if "flicker" in args.model:
+            lines.append(
+                "| 1/f σ_w² (eq. (3)) | (rad/s)² | "
+                + " | ".join(
+                    _format(fits[a].model.flicker_variance, fits[a].standard_errors["flicker_variance"])
+                    for a in axes
+                )
+                + " |"
+            )
+            if args.flicker_d is None:
+                lines.append(
+                    "| 1/f order d | — | "
+                    + " | ".join(
+                        _format(fits[a].model.flicker_d, fits[a].standard_errors["flicker_d"]) for a in axes
+                    )
+                    + " |"
+                )
+        measured = {axis: _measured_bias_instability(fit) for axis, fit in fits.items()}
+        lines.append(
+            "| min ADEV of the data (τ) | rad/s (s) | "
+            + " | ".join(f"{measured[a][0]:.3g} ({measured[a][1]:.3g})" for a in axes)
+            + " |"
+        )
+        lines.append(
+            "| bias instability from the data, 95 % interval | rad/s | "
+            + " | ".join(f"{measured[a][2]:.3g} … {measured[a][3]:.3g}" for a in axes)
+            + " |"
+        )
+        lines.append(
+            "| fit χ² / degrees of freedom | — | "
+            + " | ".join(f"{fits[a].chi_square:.3g} / {fits[a].degrees_of_freedom}" for a in axes)
+            + " |"
+        )
+        bounds = [f"{a}: {', '.join(fits[a].at_bound)}" for a in axes if fits[a].at_bound]
+        lines += [
+            "",
+            f"Parameters held at zero: {'; '.join(bounds)}." if bounds else "No parameter at a bound.",
+            "",
+        ]
+    if len(files) > 1:
+        lines += [
+            "## Run-to-run consistency",
+            "",
+            "Weighted mean over the runs, the runs' sample standard deviation, and χ² of the runs about the "
+            "weighted mean with its p-value: a small p says the runs differ by more than their standard "
+            "errors.",
+            "",
+            "| parameter | unit | " + " | ".join(axes) + " |",
+            "|---|---|" + "---|" * len(axes),
+        ]
+        for key, label, unit, kind in [(*row, "paper") for row in PAPER_ROWS] + [
+            (*row, "field") for row in FIELD_ROWS
+        ]:
+            cells = []
+            for axis in axes:
+                values = []
+                for _, fits in files:
+                    table = fits[axis].paper_units() if kind == "paper" else fits[axis].field_units()
+                    if key in table:
+                        values.append(table[key])
+                cells.append(_consistency(values) if len(values) == len(files) else "—")
+            if any(cell != "—" for cell in cells):
+                lines.append(f"| {label} | {unit} | " + " | ".join(cells) + " |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.iterations < 1:
+        raise ValueError(f"--iterations={args.iterations!r}: must be >= 1")
+    files = [_fit_file(path, args) for path in args.data]
+    if args.plot:
+        recording, fits = files[0]
+        models = {name: (fit.allan.tau, fit.model_avar) for name, fit in fits.items()}
+        plot_allan(
+            args.plot,
+            {name: fit.allan for name, fit in fits.items()},
+            f"{Path(recording.source).name}: Allan deviation and fitted {'+'.join(args.model)} model",
+            models,
+        )
+    if args.markdown:
+        args.markdown.parent.mkdir(parents=True, exist_ok=True)
+        args.markdown.write_text(markdown_report(files, args), encoding="utf-8")
+    if args.json:
+        document = {
+            "files": [
+                {
+                    "source": recording.source,
+                    "columns": {name: fit_as_json(fit) for name, fit in fits.items()},
+                }
+                for recording, fits in files
+            ]
+        }
+        json.dump(document, sys.stdout, indent=1)
+        print()
+        return 0
+    for recording, fits in files:
+        print(f"{recording.source}: {len(recording)} samples at {recording.sample_rate:g} Hz")
+        for name, fit in fits.items():
+            print(
+                f"  {name}: {fit.method}; χ² = {fit.chi_square:.3g} on {fit.degrees_of_freedom} "
+                "degrees of freedom"
+            )
+            for key, value in {**fit.paper_units(), **fit.field_units()}.items():
+                print(f"    {key:40s} {_format(*value)}")
+            if fit.at_bound:
+                print(f"    held at zero: {', '.join(fit.at_bound)}")
+    for path in (args.plot, args.markdown):
+        if path:
+            print(f"wrote {path}")
+    return 0
