@@ -258,8 +258,10 @@ def overlapping_allan_variance_exact(n: int, m: int, C: Any = 1) -> Any:
     """E of the fully overlapping Allan variance of R_{2^n} = C K x at τ = 2^m, exactly.
 
     σ²_overlap(τ) = Σ_{t=0}^{L−1} (ȳ_{t+τ} − ȳ_t)² / (2L), ȳ_t the mean of y_t … y_{t+τ−1},
-    L = 2^n − 2τ + 1. Not constant in τ (TIM 2014 §IV, last paragraph before (32)); computed from
-    prefix sums of each square-wave column, O(2^n n), as a SymPy Rational times C².
+    L = 2^n − 2τ + 1. Not constant in τ (TIM 2014 §IV, last paragraph before (32)). By independence of
+    the x_i, E = C² Σ_i Σ_t (window-mean difference of column i)² / (2L); the window sums of each
+    square-wave column come from m doublings in narrow integer types, O(2^n n m) time, and the result
+    is a SymPy Rational times C² (exact for exact C).
     """
     n = _check_order(n)
     m = _check_octave(m, n)
@@ -267,18 +269,27 @@ def overlapping_allan_variance_exact(n: int, m: int, C: Any = 1) -> Any:
     tau = 2**m
     windows = 2**n - 2 * tau + 1
     total = 0
-    # prefix sums of ±1 stay below 2^n in magnitude: int32 is exact for every n this accepts in memory
-    prefix = np.zeros(2**n + 1, dtype=np.int32 if n < 31 else np.int64)
     for i in range(1, n + 1):
-        np.cumsum(_twice_column(n, i), out=prefix[1:])
-        # (sum of 2K over the later window) − (sum over the earlier window)
-        change = prefix[2 * tau :] - 2 * prefix[tau:-tau] + prefix[: -2 * tau]
-        # exact sum of squares for every n: count each value (|change| ≤ 2τ), square in Python integers
-        counts = np.bincount(np.abs(change))
+        # sums of 2K over every window of length 2^{k+1}: w_{k+1}[t] = w_k[t] + w_k[t + 2^k], in the
+        # narrowest integer type that holds the later difference of two windows (|change| ≤ 2τ)
+        window = _twice_column(n, i).astype(_integer_type(2 * tau))
+        for k in range(m):
+            window = window[: -(2**k)] + window[2**k :]
+        change = np.abs(window[tau:] - window[:-tau])
+        # exact sum of squares for every n: count each value, square in Python integers
+        counts = np.bincount(change)
         total += sum(int(count) * value * value for value, count in enumerate(counts.tolist()) if count)
     # a difference of means of K is change / (2τ)
     expectation_unit = sp.Rational(total, 4 * tau**2 * 2 * windows)
     return _evaluate(C_symbol**2 * expectation_unit, C)
+
+
+def _integer_type(bound: int) -> type[np.signedinteger]:
+    """The narrowest signed integer type holding every value of magnitude up to ``bound``."""
+    for candidate in (np.int8, np.int16, np.int32):
+        if bound <= np.iinfo(candidate).max:
+            return candidate
+    return np.int64
 
 
 def allan_estimator_variance(n: int, m: int, C: Any = 1.0) -> Any:

@@ -12,7 +12,7 @@ The proofs for all n are in ``proofs/proof_graycode_*.py``; these checks are a s
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property
@@ -32,10 +32,6 @@ from carousel_theory.graycode import (
 from carousel_theory.progress import progress
 
 __all__ = ["PROPERTIES", "PropertyResult", "check_order", "check_up_to"]
-
-# Rows per block when the Gram matrix is accumulated (float32 stays exact: sums of ±1 below 2^24).
-_GRAM_BLOCK_ROWS = 2**18
-
 
 class _Workspace:
     """Arrays shared by the checks of one order n, computed on first use."""
@@ -71,20 +67,18 @@ class _Workspace:
         return [_twice_column(self.n, i) for i in range(1, self.n + 1)]
 
     @cached_property
-    def block_products(self) -> tuple[np.ndarray, np.ndarray]:
-        """(2K)ᵀ(2K) (n × n) and 4 K Kᵀ restricted to ``selected_columns`` (|selected| × 2^n), in one
-        pass over row blocks of 2K (float32 is exact: integer sums below 2^24 per block)."""
-        n = self.n
-        selected = self.selected_columns
-        chosen_rows = np.stack([c[selected] for c in self.columns], axis=0).astype(np.float32)  # n × |sel|
-        gram = np.zeros((n, n), dtype=np.int64)
-        four_columns = np.empty((len(selected), self.length), dtype=np.int32)
-        for start in range(0, self.length, _GRAM_BLOCK_ROWS):
-            block = np.stack([c[start : start + _GRAM_BLOCK_ROWS] for c in self.columns], axis=0)
-            block = block.astype(np.float32)  # n × rows, contiguous rows of 2K transposed
-            gram += np.rint(block @ block.T).astype(np.int64)
-            four_columns[:, start : start + block.shape[1]] = np.rint(chosen_rows.T @ block)
-        return gram, four_columns
+    def row_words(self) -> np.ndarray:
+        """Row r of K + ½ read as an n-bit integer, column 1 most significant (built from the columns)."""
+        words = np.zeros(self.length, dtype=self.rows.dtype)
+        for column in self.columns:
+            np.left_shift(words, 1, out=words)
+            np.bitwise_or(words, column > 0, out=words)
+        return words
+
+    @cached_property
+    def packed_columns(self) -> list[np.ndarray]:
+        """Column i of K + ½ packed eight rows to a byte."""
+        return [np.packbits(column > 0) for column in self.columns]
 
     @cached_property
     def selected_columns(self) -> list[int]:
@@ -98,12 +92,15 @@ class _Workspace:
         return sorted(picks)
 
 
-def _level_sums(values: np.ndarray, n: int):
-    """Yield (m, bin sums at τ = 2^m) for m = 0 … n − 1, by pairwise summation."""
-    sums = values.astype(np.int32)
+def _level_sums(values: np.ndarray, n: int, magnitude: int = 1) -> Iterator[tuple[int, np.ndarray]]:
+    """Yield (m, bin sums at τ = 2^m) for m = 0 … n − 1, by pairwise summation of integers with
+    |values| ≤ ``magnitude``: int16 while the sums fit (half the memory traffic), int32 after."""
+    sums: np.ndarray = values.astype(np.int16 if 2 * magnitude < 2**15 else np.int32)
     for m in range(n):
         yield m, sums
-        sums = sums[0::2] + sums[1::2]
+        if sums.dtype == np.int16 and magnitude * 2 ** (m + 2) >= 2**15:
+            sums = sums.astype(np.int32)
+        sums = np.add(sums[0::2], sums[1::2])
 
 
 def _period_four(work: _Workspace) -> bool:
@@ -116,11 +113,9 @@ def _period_four(work: _Workspace) -> bool:
 
 def _gray_matrix_convention(work: _Workspace) -> bool:
     """K + ½ is the Gray code matrix: column i holds bit n − i (weight 2^{n−i}) of g(r)."""
-    for i, column in enumerate(work.columns, start=1):
-        bit = (work.gray >> (work.n - i)) & 1
-        if not np.array_equal(column > 0, bit.astype(bool)):
-            return False
-    return True
+    if not all(np.all(np.abs(column) == 1) for column in work.columns):
+        return False
+    return bool(np.array_equal(work.row_words, work.gray))
 
 
 def _ones_count(work: _Workspace) -> bool:
@@ -130,7 +125,7 @@ def _ones_count(work: _Workspace) -> bool:
 
 def _rule_21(work: _Workspace) -> bool:
     """Eq. (21): |S̄(τ)_{j+1} − S̄(τ)_j| = 1 for τ = 1, 2, …, 2^{n−1}."""
-    for m, sums in _level_sums(work.twice_sequence, work.n):
+    for m, sums in _level_sums(work.twice_sequence, work.n, work.n):
         # sums are of 2S over 2^m samples: a unit change of the mean is 2·2^m
         if not np.all(np.abs(np.diff(sums)) == 2 ** (m + 1)):
             return False
@@ -162,7 +157,7 @@ def _single_innovation(work: _Workspace) -> bool:
 
 def _allan_statistic_of_s(work: _Workspace) -> bool:
     """σ_A²(2^m) of the deterministic S is exactly ½ for every m (eq. (20), (21))."""
-    for m, sums in _level_sums(work.twice_sequence, work.n):
+    for m, sums in _level_sums(work.twice_sequence, work.n, work.n):
         squares = int(np.sum(np.diff(sums).astype(np.int64) ** 2))
         differences = len(sums) - 1
         # σ_A² = Σ (Δ mean)² / (2(M − 1)) with Δ mean = Δ sums / 2^{m+1}
@@ -182,7 +177,13 @@ def _diagonal(work: _Workspace) -> bool:
 def _gram(work: _Workspace) -> bool:
     """Kᵀ K = 2^{n−2} I (so K⁺ = 2^{2−n} Kᵀ and K⁺K = I): accumulated over row blocks."""
     n = work.n
-    gram, _ = work.block_products
+    gram = np.empty((n, n), dtype=np.int64)
+    packed = work.packed_columns
+    for i in range(n):
+        for j in range(i, n):
+            # (±1)(±1) is +1 where the bits agree and −1 where they differ
+            disagreements = int(np.bitwise_count(packed[i] ^ packed[j]).sum(dtype=np.int64))
+            gram[i, j] = gram[j, i] = work.length - 2 * disagreements
     # gram is of 2K: (2K)ᵀ(2K) = 4 · 2^{n−2} I = 2^n I
     return bool(np.array_equal(gram, work.length * np.eye(n, dtype=np.int64)))
 
@@ -191,12 +192,12 @@ def _covariance_columns(work: _Workspace) -> bool:
     """(K Kᵀ)[:, s] = −½ S[r XOR s] and its bin averages change by exactly ½ at every τ = 2^m
     (the rule of eq. (21) with 1 replaced by ½), for the columns ``selected_columns``."""
     n = work.n
-    selected = work.selected_columns
-    _, four_columns = work.block_products
-    for s, four_column in zip(selected, four_columns, strict=True):
+    for s in work.selected_columns:
+        # 4 (K Kᵀ)[r, s] = Σ_i (2K)_{r,i} (2K)_{s,i} = n − 2 · #(bits where rows r and s differ)
+        four_column = n - 2 * np.bitwise_count(work.row_words ^ work.row_words[s]).astype(np.int32)
         if not np.array_equal(four_column, -work.twice_sequence[work.rows ^ s]):
             return False
-        for m, sums in _level_sums(four_column, n):
+        for m, sums in _level_sums(four_column, n, n):
             # a change of ½ in the mean of K Kᵀ is a change of 2 · 2^m in sums of 4 K Kᵀ
             if not np.all(np.abs(np.diff(sums)) == 2 ** (m + 1)):
                 return False
