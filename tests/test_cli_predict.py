@@ -134,3 +134,23 @@ def test_inf_in_the_recording_is_refused(tmp_path, capsys):
 def test_invalid_invocations_exit_2(arguments, capsys):
     assert main(arguments) == 2
     assert "error" in capsys.readouterr().err
+
+
+def test_table1_on_a_directory_of_recordings_writes_and_checks_markdown(tmp_path, capsys):
+    rng = np.random.default_rng(23)
+    directory = tmp_path / "recordings"
+    directory.mkdir()
+    for index in range(2):
+        rates = 1e-3 * fractional_integral(rng.standard_normal(1600), 0.5) + 2e-3 * rng.standard_normal(1600)
+        np.savez(directory / f"run{index}.npz", t=np.arange(1600) / 50.0, wx=rates, wy=-rates, fs=50.0)
+    report = tmp_path / "table.md"
+    arguments = ["predict", "--table1", "--data", str(directory), "--calibration", "100", "--average", "2"]
+    assert main([*arguments, "--json", "--markdown", str(report)]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["settings"]["sample_rate_hz"] == 25.0
+    assert result["axes"]["wx"]["sections"] == 8  # 2 files × 800 averaged samples / 200
+    for method in ("KF", "MA", "CM"):
+        assert math.isfinite(result["axes"]["wy"][method]["std_ie"])
+    text = report.read_text()
+    assert "| mean RSSE |" in text and "--average 2" in text
+    assert main([*arguments, "--markdown", str(report), "--check"]) == 0
