@@ -57,6 +57,7 @@ __all__ = [
     "flicker_carouselled_bin_variance",
     "repeated_weights_bin_variances",
     "weighted_sum_variance",
+    "weighted_sums_covariance",
 ]
 
 #: The two ways of reducing a bin: plain averaging (eq. (12)) and carouseling (eq. (13), two gyros).
@@ -172,6 +173,36 @@ def _weighted_sum_variance_exact(values: list[Fraction], process: str, d: Any) -
     psi = fractional_coefficients_exact(d, n)
     coefficients = [sum((values[t] * psi[t - i] for t in range(i, n)), Fraction(0)) for i in range(n)]
     return _sum_of_squares_exact(coefficients)
+
+
+def weighted_sums_covariance(weights: Any, process: str, d: Any = None) -> np.ndarray:
+    """Covariance matrix of several linear statistics Σ_t W[m, t] x_t of one realisation of a process.
+
+    ``weights`` has shape (statistics, n): row m weights samples t = 1 … n of a process of TIM 2014 §II
+    started at t = 1 (unit driving variance). Each row is turned into the coefficients of the
+    driving noise (as in :func:`weighted_sum_variance`: the row itself for white noise, its suffix
+    sums for rate random walk, its FFT correlation with ψ for 1/f noise, its total for bias), and
+    the covariance is C Cᵀ: O(m n log n + m² n), never an n×n matrix. Bins of unequal length or with
+    measured, non-uniform rotation angles (:func:`carousel_theory.weights.carousel_weights_from_angles`)
+    are rows with their weights placed at their own samples.
+    """
+    process = _check_process("process", process)
+    d = _check_order_for(process, d)
+    W = check_finite_array("weights", weights, ndim=2)
+    n = W.shape[1]
+    if n < 1:
+        raise ValueError(f"weights: must hold at least 1 sample per row, got shape {W.shape}")
+    if process == "bias":
+        coefficients = W.sum(axis=1, keepdims=True)
+    elif process == "white":
+        coefficients = W
+    elif process == "rrw":
+        coefficients = np.cumsum(W[:, ::-1], axis=1)
+    else:
+        coefficients = scipy.signal.fftconvolve(
+            W[:, ::-1], fractional_coefficients(d, n)[np.newaxis, :], axes=1
+        )[:, :n]
+    return coefficients @ coefficients.T
 
 
 # --- the same weights in every bin ----------------------------------------------------------------

@@ -14,6 +14,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from carousel_theory import propagation
+from carousel_theory.processes import covariance_matrix as propagation_covariance
 from carousel_theory.propagation import (
     flicker_averaged_bin_variance,
     flicker_averaged_bin_variance_exact,
@@ -22,7 +23,9 @@ from carousel_theory.propagation import (
     flicker_carouselled_bin_variance,
     repeated_weights_bin_variances,
     weighted_sum_variance,
+    weighted_sums_covariance,
 )
+from carousel_theory.weights import carousel_weights_from_angles
 
 
 @pytest.fixture(autouse=True)
@@ -211,6 +214,48 @@ def test_all_bins_at_high_precision_equal_single_bins():
                 )
 
 
+@pytest.mark.parametrize(("process", "d"), [("white", None), ("rrw", None), ("flicker", 0.3), ("bias", None)])
+def test_covariance_of_several_statistics_equals_dense_product(process, d):
+    """W Σ Wᵀ with the dense covariance of the process (processes.covariance_matrix), and the diagonal
+    equal to weighted_sum_variance row by row."""
+    W = np.random.default_rng(3).standard_normal((4, 60))
+    got = weighted_sums_covariance(W, process, d)
+    dense = W @ propagation_covariance(process, 60, d=d) @ W.T
+    assert np.allclose(got, dense, rtol=1e-12, atol=1e-12 * np.abs(dense).max())
+    assert np.allclose(np.diag(got), [weighted_sum_variance(row, process, d) for row in W], rtol=1e-12)
+
+
+def test_bins_of_unequal_length_with_measured_angles():
+    """Revolutions of 5, 7 and 6 samples at non-uniform angles (as in the field test, TIM 2014 Fig. 12):
+    the covariance of the three carouselled rate-random-walk estimates, both gyros, against dense matrices."""
+    lengths = [5, 7, 6]
+    rng = np.random.default_rng(12)
+    n = sum(lengths)
+    sine_rows, cosine_rows = np.zeros((3, n)), np.zeros((3, n))
+    start = 0
+    for row, length in enumerate(lengths):
+        angles = np.sort(rng.uniform(0, 2 * np.pi, length))
+        s, c = carousel_weights_from_angles(angles)
+        sine_rows[row, start : start + length], cosine_rows[row, start : start + length] = s, c
+        start += length
+    got = weighted_sums_covariance(sine_rows, "rrw") + weighted_sums_covariance(cosine_rows, "rrw")
+    R = np.tril(np.ones((n, n)))
+    expected = sine_rows @ R @ R.T @ sine_rows.T + cosine_rows @ R @ R.T @ cosine_rows.T
+    np.testing.assert_allclose(got, expected, rtol=1e-12)
+
+
+def test_uniform_carouselled_rrw_bins_are_uncorrelated():
+    """TIM 2014 eq. (17): with 1ᵀs = 0 the carouselled RRW bins are uncorrelated with equal variances."""
+    N, bins = 16, 3
+    s, _ = propagation.carousel_weights(N)
+    W = np.zeros((bins, bins * N))
+    for row in range(bins):
+        W[row, row * N : (row + 1) * N] = s
+    covariance = weighted_sums_covariance(W, "rrw")
+    assert np.max(np.abs(covariance - np.diag(np.diag(covariance)))) <= 1e-15
+    assert np.allclose(np.diag(covariance), covariance[0, 0], rtol=1e-13)
+
+
 # --- properties --------------------------------------------------------------------------------------
 
 
@@ -303,6 +348,14 @@ def test_scaling_of_weights():
 # --- bad input ---------------------------------------------------------------------------------------
 
 INVALID_CALLS = [
+    ("covariance 1-D", lambda: weighted_sums_covariance([1.0, 2.0], "white"), ValueError, "2-dimensional"),
+    ("covariance no d", lambda: weighted_sums_covariance([[1.0]], "flicker"), ValueError, "d=None"),
+    (
+        "covariance inf",
+        lambda: weighted_sums_covariance([[1.0, np.inf]], "rrw"),
+        ValueError,
+        "must be finite",
+    ),
     ("wsv unknown process", lambda: weighted_sum_variance([1.0], "pink"), ValueError, "process='pink'"),
     ("wsv flicker without d", lambda: weighted_sum_variance([1.0], "flicker"), ValueError, "d=None"),
     ("wsv rrw with d", lambda: weighted_sum_variance([1.0], "rrw", 0.5), ValueError, "d=0.5"),
