@@ -22,9 +22,11 @@ from carousel_theory.claim import Claim, Status, Verdict
 from carousel_theory.derivations.tim2014_flicker_noise import (
     AVERAGED_GROWTH_AT_HALF,
     CAROUSELLED_TAIL,
+    STATIONARY_AUTOCOVARIANCE,
     cumulative_coefficient,
     fractional_coefficient,
     limit_19_log_series,
+    stationary_autocovariance_derivation,
 )
 from carousel_theory.processes import (
     fractional_coefficients,
@@ -59,6 +61,37 @@ _u = sp.Symbol("u", integer=True, positive=True)
 
 def _g(value: float) -> str:
     return f"{value:.6g}"
+
+
+# --- §II-D ---------------------------------------------------------------------------------------
+
+
+def _check_long_memory() -> Verdict:
+    steps = stationary_autocovariance_derivation()
+    exact_steps = steps["term"] == 0 and steps["gauss"] == 0 and steps["tail"] == 0
+    # independent numbers: partial sums Σ_{j<t} ψ_j ψ_{j+h} (float64, t = 10⁶) plus their leading
+    # tail t^{2d−1}/((1−2d)Γ(d)²), against γ_h, at d = 1/4
+    order, length = 0.25, 10**6
+    psi = fractional_coefficients(order, length + 100)
+    gamma_h = sp.lambdify(
+        sp.Symbol("h", integer=True, nonnegative=True),
+        STATIONARY_AUTOCOVARIANCE.subs(symbols.d, sp.Rational(1, 4)),
+        "math",
+    )
+    tail = length ** (2 * order - 1) / ((1 - 2 * order) * math.gamma(order) ** 2)
+    deviations = [
+        abs(float(np.dot(psi[:length], psi[lag : length + lag])) + tail - gamma_h(lag)) / gamma_h(lag)
+        for lag in (1, 10, 100)
+    ]
+    if exact_steps and max(deviations) < 1e-4:
+        return Verdict(
+            Status.PROVED,
+            "For 0 < d < 1/2, lim_t cov(f_t, f_{t+h}) = Γ(1−2d)Γ(h+d)/(Γ(d)Γ(1−d)Γ(h+1−d)) (Gauss's ₂F₁ sum, "
+            "SymPy) ~ Γ(1−2d)/(Γ(d)Γ(1−d)) h^{2d−1}: hyperbolic, not summable; for d ≥ 1/2 Var f_t → ∞. "
+            "At d = 1/4 partial sums to t = 10⁶ plus tail agree with γ_1, γ_10, γ_100 to "
+            f"{max(deviations):.0e}.",
+        )
+    return Verdict(Status.FAILED, f"steps {steps}, deviations {deviations}")
 
 
 # --- §III-D ---------------------------------------------------------------------------------------
@@ -492,6 +525,13 @@ def _check_lower_order_terms() -> Verdict:
 
 
 CLAIMS = [
+    Claim(
+        "TIM2014-secIID-long-memory",
+        PAPER,
+        "§II-D, after eq. (3)",
+        "As opposed to RRW, 1/f noise (the fractional integral (3)) is a long-memory process.",
+        _check_long_memory,
+    ),
     Claim(
         "TIM2014-eq19-limit",
         PAPER,

@@ -20,9 +20,12 @@ __all__ = [
     "AVERAGED_TAIL_BELOW_HALF",
     "CAROUSELLED_TAIL",
     "DOCUMENT",
+    "STATIONARY_AUTOCOVARIANCE",
+    "STATIONARY_AUTOCOVARIANCE_TAIL",
     "cumulative_coefficient",
     "fractional_coefficient",
     "limit_19_log_series",
+    "stationary_autocovariance_derivation",
 ]
 
 _j = sp.Symbol("j", integer=True, positive=True)
@@ -43,6 +46,15 @@ def cumulative_coefficient(index: sp.Expr) -> sp.Expr:
     return sp.gamma(index + 1 + d) / (sp.gamma(index + 1) * sp.gamma(d + 1))
 
 
+_lag = sp.Symbol("h", integer=True, nonnegative=True)
+
+#: lim_{t→∞} cov(f_t, f_{t+h}) = Σ_{j≥0} ψ_j ψ_{j+h} for 0 < d < 1/2 (Gauss's summation, Section 7).
+STATIONARY_AUTOCOVARIANCE = (
+    sp.gamma(1 - 2 * d) * sp.gamma(_lag + d) / (sp.gamma(d) * sp.gamma(1 - d) * sp.gamma(_lag + 1 - d))
+)
+#: Leading term of the stationary autocovariance as h → ∞: C h^{2d−1}, not summable for d > 0.
+STATIONARY_AUTOCOVARIANCE_TAIL = sp.gamma(1 - 2 * d) / (sp.gamma(d) * sp.gamma(1 - d)) * _lag ** (2 * d - 1)
+
 #: Leading term of Var_k − Var_{k−1} of the averaged bins as k → ∞ (fixed N, 0 < d < 1).
 AVERAGED_INCREMENT = N ** (2 * d - 1) * k ** (2 * d - 2) / sp.gamma(d) ** 2
 #: Leading term of Var_k of the averaged bins for 1/2 < d < 1 (Var_k = this + C(N, d) + o(1)).
@@ -61,6 +73,28 @@ def limit_19_log_series() -> sp.Expr:
     """log(Γ(i + d) / (i^d Γ(i))) expanded at i = ∞ to O(i⁻²) (Stirling series, by SymPy)."""
     series = sp.series(sp.loggamma(_i + d) - sp.loggamma(_i) - d * sp.log(_i), _i, sp.oo, n=2)
     return sp.simplify(series.removeO())
+
+
+def stationary_autocovariance_derivation() -> dict[str, sp.Expr]:
+    """The steps behind :data:`STATIONARY_AUTOCOVARIANCE`, each a SymPy expression that must vanish.
+
+    ψ_j ψ_{j+h} = ψ_h · (d)_j (h+d)_j / ((h+1)_j j!) (term of ₂F₁(d, h+d; h+1; 1)); Gauss's theorem
+    (SymPy ``hyperexpand``) sums the series for c − a − b = 1 − 2d > 0; and the log of
+    Γ(h+d)/(Γ(h+1−d) h^{2d−1}) tends to 0 (Stirling series).
+    """
+    j = sp.Symbol("j", integer=True, nonnegative=True)
+    term = fractional_coefficient(j) * fractional_coefficient(j + _lag) / fractional_coefficient(_lag)
+    hypergeometric_term = sp.rf(d, j) * sp.rf(_lag + d, j) / (sp.rf(_lag + 1, j) * sp.factorial(j))
+    gauss = sp.hyperexpand(sp.hyper([d, _lag + d], [_lag + 1], 1))
+    tail = sp.series(
+        sp.loggamma(_lag + d) - sp.loggamma(_lag + 1 - d) - (2 * d - 1) * sp.log(_lag), _lag, sp.oo, n=2
+    ).removeO()
+    return {
+        "term": sp.simplify(sp.gammasimp((term - hypergeometric_term).rewrite(sp.gamma))),
+        "gauss": sp.simplify(sp.gammasimp(fractional_coefficient(_lag) * gauss - STATIONARY_AUTOCOVARIANCE)),
+        "tail": sp.simplify(tail),
+        "gauss_value": gauss,
+    }
 
 
 def _zero(expression: sp.Expr) -> bool:
@@ -201,6 +235,22 @@ def _build() -> str:
         "test (the partial sums of a periodic zero-sum sequence are bounded and ψ decreases to 0). "
         "Convergence of these coefficients is weaker than convergence of the per-bin variance, which "
         "needs $\\sum_j g_j^2 < \\infty$; Section 5 supplies it.\n"
+    )
+    out.append("## 7. Long memory of eq. (3) (§II-D)\n")
+    steps = stationary_autocovariance_derivation()
+    assert steps["term"] == 0 and steps["gauss"] == 0 and steps["tail"] == 0
+    out.append(
+        "cov(f_t, f_{t+h}) = $\\sum_{j=0}^{t-1}\\psi_j\\psi_{j+h}$. Since "
+        "$\\psi_j\\psi_{j+h} = \\psi_h\\,(d)_j (h+d)_j/((h+1)_j\\, j!)$ (SymPy, rising factorials), the "
+        "limit t → ∞ is $\\psi_h\\,{}_2F_1(d, h+d; h+1; 1)$; Gauss's theorem (SymPy `hyperexpand`, valid "
+        f"for 1 − 2d > 0) gives ${sp.latex(steps['gauss_value'])}$, so for 0 < d < 1/2 "
+        + _latex(sp.Eq(sp.Symbol("gamma_h"), STATIONARY_AUTOCOVARIANCE))
+        + "and, because $\\log\\frac{\\Gamma(h+d)}{\\Gamma(h+1-d)h^{2d-1}} = O(h^{-2})$ (its 1/h term "
+        "cancels), $\\gamma_h \\sim "
+        + sp.latex(STATIONARY_AUTOCOVARIANCE_TAIL)
+        + "$: hyperbolic decay, not summable — long memory, as §II-D states, unlike the Markov RRW. "
+        "For 1/2 ≤ d < 1 there is no stationary limit: $\\operatorname{Var} f_t = \\sum_{j<t}\\psi_j^2$ "
+        "grows like $\\log t/\\pi$ (d = 1/2) or $t^{2d-1}/((2d-1)\\Gamma(d)^2)$ (Section 4, with N = 1).\n"
     )
     return "\n".join(out)
 
