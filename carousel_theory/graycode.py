@@ -75,8 +75,7 @@ ALLAN_ESTIMATOR_VARIANCE = (
     2 * C_symbol**4 * (2 ** (n_symbol - m_symbol) + 1) / (3 * (2 ** (n_symbol - m_symbol) - 1))
 )
 
-# Bytes per element of the largest output (float64) and a share of physical memory we allow.
-_BYTES_PER_VALUE = 8
+# Share of the physical memory one call may plan to use.
 _MEMORY_SHARE = 0.5
 
 
@@ -88,21 +87,26 @@ def _physical_memory_bytes() -> int:
         return 8 * 2**30
 
 
-def _check_order(n: Any, columns: int | None = 1) -> int:
-    """Validate the order n of Algorithm 1 and, before anything is allocated, that a 2^n × ``columns``
-    float64 output (``columns=None``: 2^n × n, the size of K) fits in half the physical memory."""
+def _check_order(n: Any, bytes_per_row: int = 0) -> int:
+    """Validate the order n of Algorithm 1 (an integer ≥ 2) and, before anything is allocated, that
+    the work fits in half the physical memory: 2^n rows × ``bytes_per_row`` bytes at the peak
+    (0 for closed forms, which allocate nothing of length 2^n)."""
     value = check_integer("n", n)
     if value < MINIMUM_ORDER:
         raise ValueError(f"n={n!r}: must be an integer >= {MINIMUM_ORDER} (TIM 2014 Algorithm 1 takes 1 < n)")
-    limit = int(_physical_memory_bytes() * _MEMORY_SHARE)
-    width = value if columns is None else columns
-    needed = (2**value) * width * _BYTES_PER_VALUE if value < 62 else float("inf")
-    if needed > limit:
-        raise ValueError(
-            f"n={n!r}: a 2^{value} x {width} float64 output needs {needed:.3g} "
-            f"bytes, more than half of this machine's memory ({limit:.3g} bytes); use a smaller n"
-        )
+    if bytes_per_row:
+        limit = int(_physical_memory_bytes() * _MEMORY_SHARE)
+        needed = 2**value * bytes_per_row
+        if needed > limit:
+            raise ValueError(
+                f"n={n!r}: needs about {needed:.3g} bytes of memory (2^{value} rows x {bytes_per_row} "
+                f"bytes), more than half of this machine's memory ({limit:.3g} bytes); use a smaller n"
+            )
     return value
+
+
+#: Peak bytes per sample of Algorithm 1 (four float64 arrays of length 2^n at once).
+_SEQUENCE_BYTES_PER_ROW = 32
 
 
 def _check_octave(m: Any, n: int) -> int:
@@ -164,7 +168,7 @@ def sequence_from_innovations(x: Any, C: Any = 1.0) -> np.ndarray:
     """
     x = check_finite_array("x", x, ndim=1, min_length=MINIMUM_ORDER)
     C = _check_scale(C)
-    n = _check_order(x.shape[0])
+    n = _check_order(x.shape[0], _SEQUENCE_BYTES_PER_ROW)
     coefficients = _coefficients(2**n)  # a_{1…2^i} is the prefix of length 2^i
     values = coefficients[:2] * x[0]  # line 1 of Algorithm 1, scaled by x_1
     for i in range(2, n + 1):
@@ -175,7 +179,7 @@ def sequence_from_innovations(x: Any, C: Any = 1.0) -> np.ndarray:
 
 def deterministic_sequence(n: int) -> np.ndarray:
     """S_{2^n} of TIM 2014 Algorithm 1 (length 2^n, half-integer values, exact in float64)."""
-    n = _check_order(n)
+    n = _check_order(n, _SEQUENCE_BYTES_PER_ROW)
     return sequence_from_innovations(np.ones(n))
 
 
@@ -184,7 +188,8 @@ def gray_matrix(n: int) -> np.ndarray:
 
     K + ½ is the binary reflected Gray code matrix (row r = g(r), most significant bit first).
     """
-    n = _check_order(n, columns=None)
+    n = _check_order(n)
+    _check_order(n, 8 * (n + 1))  # the matrix and one column being built
     matrix = np.empty((2**n, n), dtype=np.float64)
     for i in range(1, n + 1):
         matrix[:, i - 1] = gray_column(n, i)
@@ -193,7 +198,7 @@ def gray_matrix(n: int) -> np.ndarray:
 
 def gray_column(n: int, i: int) -> np.ndarray:
     """Column i (1 … n) of K: a_{1…2^i} ⊗ 1_{2^{n−i}}, a square wave of ±½ (TIM 2014 §IV)."""
-    n = _check_order(n)
+    n = _check_order(n, 16)
     i = check_integer("i", i)
     if not 1 <= i <= n:
         raise ValueError(f"i={i!r}: must be a column number in 1..{n}")
@@ -209,7 +214,7 @@ def _twice_column(n: int, i: int) -> np.ndarray:
 def sequence(n: int, C: Any = 1.0, *, rng: np.random.Generator) -> np.ndarray:
     """A random R_{2^n} = C K x with x ~ N(0, I_n): its non-overlapping Allan variance has
     expectation exactly C²/2 at every τ = 2^m, m = 0 … n − 1 (TIM 2014 eq. (23), (30))."""
-    n = _check_order(n)
+    n = _check_order(n, _SEQUENCE_BYTES_PER_ROW)
     C = _check_scale(C)
     if not isinstance(rng, np.random.Generator):
         raise TypeError(f"rng={rng!r}: must be a numpy.random.Generator (numpy.random.default_rng(seed))")
@@ -263,7 +268,7 @@ def overlapping_allan_variance_exact(n: int, m: int, C: Any = 1) -> Any:
     square-wave column come from m doublings in narrow integer types, O(2^n n m) time, and the result
     is a SymPy Rational times C² (exact for exact C).
     """
-    n = _check_order(n)
+    n = _check_order(n, 24)
     m = _check_octave(m, n)
     C = _check_scale(C)
     tau = 2**m
@@ -313,7 +318,7 @@ def covariance_entry(n: int, r: int, s: int) -> Fraction:
     Entries of K are ±½, so a product of two rows counts agreeing bits minus disagreeing bits over
     four; the disagreeing bits are g(r) XOR g(s) = g(r XOR s) because g is linear over GF(2).
     """
-    n = _check_order(n, columns=0)
+    n = _check_order(n)
     r = check_integer("r", r)
     s = check_integer("s", s)
     for name, value in (("r", r), ("s", s)):
@@ -324,7 +329,8 @@ def covariance_entry(n: int, r: int, s: int) -> Fraction:
 
 def pseudoinverse(n: int) -> np.ndarray:
     """K⁺ = (KᵀK)⁻¹Kᵀ = 2^{2−n} Kᵀ (n × 2^n), since KᵀK = 2^{n−2} I (TIM 2014 eq. (31) for n = 2)."""
-    n = _check_order(n, columns=None)
+    n = _check_order(n)
+    _check_order(n, 8 * (2 * n + 1))  # K, its scaled transpose and one column
     scale = float(1 / GRAM_SCALE.subs(n_symbol, n))
     return scale * gray_matrix(n).T
 

@@ -237,6 +237,13 @@ def test_estimator_variances_against_gaussian_quadratic_forms(n):
     assert all(mvue_variance(n, 1) < allan_estimator_variance(n, m, 1) for m in range(n))
 
 
+def test_closed_forms_accept_any_order_without_allocating():
+    assert allan_variance_exact(200, 150, 1) == sp.Rational(1, 2)
+    assert mvue_variance(200, 1) == sp.Rational(1, 100)
+    assert covariance_entry(100, 0, 2**100 - 1) == Fraction(100 - 2 * 1, 4)  # g(2^100 − 1) = 2^99
+    assert innovation_index(100, 0, 2**40) == 60
+
+
 def test_exact_results_are_exact_and_float_results_are_float():
     assert allan_variance_exact(5, 1, sp.Rational(1, 3)) == sp.Rational(1, 18)
     assert isinstance(allan_variance_exact(5, 1, 0.5), float)
