@@ -23,7 +23,6 @@ from carousel_theory.graycode import (
     allan_variance_exact,
     allan_variance_statistic,
     deterministic_sequence,
-    gray_code,
     gray_matrix,
     m_symbol,
     n_symbol,
@@ -465,17 +464,6 @@ def _check_s2048() -> Verdict:
     return Verdict(Status.FAILED, f"values {values}")
 
 
-def _check_gray_definition_example() -> Verdict:
-    # sample r = 5 of S_8: g(5) = 7 → popcount 3 → S = 3 − 3/2 = 3/2, the maximum printed in Table I
-    if gray_code(5) == 7 and deterministic_sequence(3)[5] == 1.5:
-        return Verdict(
-            Status.VERIFIED,
-            "The maximum 3/2 of S_8 (Table I, sample 6) is at r = 5 = floor(16/3), "
-            "where g(5) = 111b has three ones.",
-        )
-    return Verdict(Status.FAILED, "Table I maximum not at g(r) = 111b")
-
-
 def _claim(suffix: str, location: str, statement: str, check) -> Claim:
     return Claim(f"TIM2014-{suffix}", "TIM2014", location, statement, check)
 
@@ -535,12 +523,6 @@ CLAIMS: list[Claim] = [
         "§IV, after (32)",
         "S + n/2 depicts the number of ones in the Gray code representation.",
         _check_ones_count,
-    ),
-    _claim(
-        "sec4-gray-maximum",
-        "§IV, Table I",
-        "S_8 peaks at 3/2 (sample 6), where the Gray code is all ones.",
-        _check_gray_definition_example,
     ),
     _claim(
         "sec4-kkt-columns-rule21",
