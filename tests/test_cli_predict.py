@@ -83,7 +83,8 @@ def test_table1_is_reproducible_for_a_seed(capsys):
 def test_prediction_on_the_measured_recording(shared_data, tmp_path):
     path = shared_data / "adis16405_static" / "adis16405_run1.npz"
     output = tmp_path / "adis.csv"
-    assert main(["predict", str(path), "--axis", "wy", "--calibration", "500", "--output", str(output)]) == 0
+    arguments = ["predict", str(path), "--axis", "wy", "--calibration", "500", "--output", str(output)]
+    assert main([*arguments, "--driving-variance", "2.7e-6", "--white-variance", "3.7e-5"]) == 0
     assert output.read_text().count("\n") == 501
 
 
