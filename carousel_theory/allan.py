@@ -26,6 +26,7 @@ Model Allan variance
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -252,9 +253,17 @@ def _component_filters(
     return filters
 
 
+@functools.lru_cache(maxsize=8)
+def _cumulative_psi(d: float, length: int) -> np.ndarray:
+    """Ψ_u = Σ_{k≤u} ψ_k, u = 0 … length−1 (cached: the fit evaluates it for many τ at one d)."""
+    values = np.cumsum(fractional_coefficients(d, length))
+    values.setflags(write=False)
+    return values
+
+
 def _second_difference_of_cumulative_psi(d: float, m: int, length: int) -> np.ndarray:
     """G(u) = Ψ_u − 2Ψ_{u−m} + Ψ_{u−2m}, u = 0 … length−1, with Ψ_u = Σ_{k≤u} ψ_k and Ψ = 0 below 0."""
-    psi_sum = np.cumsum(fractional_coefficients(d, length))
+    psi_sum = _cumulative_psi(d, length)
     G = psi_sum.copy()
     if m < length:
         G[m:] -= 2.0 * psi_sum[:-m]
@@ -315,7 +324,9 @@ def _positioned_taps(name: str, m: int, length: int, d: float, reach: int) -> tu
 
 #: The 1/f filter is cut at this many cluster lengths in :func:`allan_covariance` (its tail decays
 #: as u^{d−2}).
-FLICKER_REACH_IN_CLUSTERS = 16
+FLICKER_REACH_IN_CLUSTERS = 8
+#: ... and never shorter than this many samples (short clusters need the tail most).
+FLICKER_MINIMUM_REACH = 1024
 
 
 def _overlap(start_a: Any, end_a: Any, start_b: Any, end_b: Any) -> Any:
@@ -323,7 +334,9 @@ def _overlap(start_a: Any, end_a: Any, start_b: Any, end_b: Any) -> Any:
     return np.maximum(0, np.minimum(end_a, end_b) - np.maximum(start_a, start_b))
 
 
-def _cross_correlation(name: str, m_i: int, m_j: int, g_i: np.ndarray, g_j: np.ndarray) -> np.ndarray:
+def _cross_correlation(
+    name: str, m_i: int, m_j: int, g_i: np.ndarray, g_j: np.ndarray, spectra: dict | None = None
+) -> np.ndarray:
     """X(l) = Σ_k g_i[k] g_j[k + l] for l = −(len g_i − 1) … len g_j − 1 (as np.correlate(g_j, g_i, "full")).
 
     White (two ±1 boxes): sums of interval overlaps, exact in integers. Rate random walk: its taps are
@@ -349,7 +362,11 @@ def _cross_correlation(name: str, m_i: int, m_j: int, g_i: np.ndarray, g_j: np.n
                 X[position_j - position_i + len(g_i) - 1] += weight_i * weight_j
         return X
     size = 1 << int(np.ceil(np.log2(len(g_i) + len(g_j))))
-    wrapped = np.fft.irfft(np.conj(np.fft.rfft(g_i, size)) * np.fft.rfft(g_j, size), size)
+    spectra = {} if spectra is None else spectra
+    for key, taps in (((m_i, size), g_i), ((m_j, size), g_j)):
+        if key not in spectra:  # each τ's filter is transformed once per FFT size
+            spectra[key] = np.fft.rfft(taps, size)
+    wrapped = np.fft.irfft(np.conj(spectra[(m_i, size)]) * spectra[(m_j, size)], size)
     lags = np.arange(-(len(g_i) - 1), len(g_j))
     return wrapped[lags % size]
 
@@ -375,13 +392,16 @@ def allan_covariance(
     terms = length - 2 * sizes + 1 if estimator == "overlapping" else length // sizes - 1
     taps = [
         {
-            name: _positioned_taps(name, int(m), length, d, (FLICKER_REACH_IN_CLUSTERS + 2) * int(m))
+            name: _positioned_taps(
+                name, int(m), length, d, max((FLICKER_REACH_IN_CLUSTERS + 2) * int(m), FLICKER_MINIMUM_REACH)
+            )
             for name in parts
         }
         for m in sizes
     ]
     count = len(sizes)
     result = np.empty((count, count))
+    spectra: dict = {}
     for i in range(count):
         for j in range(i, count):
             m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
@@ -407,7 +427,7 @@ def allan_covariance(
             for name, variance in parts.items():
                 g_i, o_i = taps[i][name]
                 g_j, o_j = taps[j][name]
-                cross = _cross_correlation(name, m_i, m_j, g_i, g_j)
+                cross = _cross_correlation(name, m_i, m_j, g_i, g_j, spectra)
                 index = delta + o_i - o_j + len(g_i) - 1  # lag l sits at l + len(g_i) − 1
                 inside = (index >= 0) & (index < len(cross))
                 covariance[inside] += variance * cross[index[inside]]

@@ -108,12 +108,24 @@ class NoiseModel:
         """(min σ_A, τ at the minimum) of this model over octave τ of a record of ``length`` samples."""
         from carousel_theory.allan import model_allan_variance, octave_cluster_sizes
 
-        sizes = octave_cluster_sizes(length)
-        # Refine between octaves: the minimum of a smooth curve is found on a dense log grid.
-        grid = np.unique(np.rint(np.geomspace(1, sizes[-1], 200)).astype(np.int64))
-        values = model_allan_variance(self, grid, length=length)
-        best = int(np.argmin(values))
-        return math.sqrt(float(values[best])), float(grid[best] / self.sample_rate)
+        key = (
+            "minimum",
+            length,
+            self.white_variance,
+            self.rrw_variance,
+            self.flicker_variance,
+            self.flicker_d,
+            self.quantization,
+            self.sample_rate,
+        )
+        if key not in self.extra:  # the 1/f curve costs O(n) per τ, and reports ask for it often
+            sizes = octave_cluster_sizes(length)
+            # Between octaves: the minimum of a smooth curve is found on a log grid of 8 points per octave.
+            grid = np.unique(np.rint(np.geomspace(1, sizes[-1], 8 * len(sizes))).astype(np.int64))
+            values = model_allan_variance(self, grid, length=length)
+            best = int(np.argmin(values))
+            self.extra[key] = (math.sqrt(float(values[best])), float(grid[best] / self.sample_rate))
+        return self.extra[key]
 
     def bias_instability(self, length: int) -> float:
         """Bias instability B = min σ_A / 0.664 (rad/s) of the model's Allan curve (IEEE Std 952)."""
@@ -447,7 +459,12 @@ def fit_noise_model(
         cholesky = np.linalg.cholesky(covariance)
         jacobian = np.column_stack((whitened, np.linalg.solve(cholesky, derivative)))
         names = (*names, "flicker_d")
-    parameter_covariance = np.linalg.pinv(jacobian.T @ jacobian)
+    # Columns differ by many orders of magnitude (variances of 1e-12 next to d of order 1): invert the
+    # information matrix of the column-scaled problem, then scale back.
+    column_scale = np.linalg.norm(jacobian, axis=0)
+    column_scale[column_scale == 0] = 1.0
+    scaled = jacobian / column_scale
+    parameter_covariance = np.linalg.pinv(scaled.T @ scaled) / np.outer(column_scale, column_scale)
     errors = dict(zip(names, np.sqrt(np.diag(parameter_covariance)), strict=True))
     at_bound = tuple(name for name, value in zip(names, theta, strict=False) if value <= 0)
     mean = float(samples.mean())
