@@ -36,6 +36,7 @@ __all__ = ["PROPERTIES", "PropertyResult", "check_order", "check_up_to"]
 #: Peak memory per row of the checks of one order (measured: about 1.7 GB at n = 24, ~100 bytes/row).
 _BYTES_PER_ROW = 128
 
+
 class _Workspace:
     """Arrays shared by the checks of one order n, computed on first use."""
 
