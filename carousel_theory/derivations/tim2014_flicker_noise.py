@@ -17,6 +17,8 @@ __all__ = [
     "AVERAGED_GROWTH_ABOVE_HALF",
     "AVERAGED_GROWTH_AT_HALF",
     "AVERAGED_INCREMENT",
+    "AVERAGED_LOG_LOWER_BOUND",
+    "AVERAGED_LOG_UPPER_BOUND",
     "AVERAGED_TAIL_BELOW_HALF",
     "CAROUSELLED_TAIL",
     "DOCUMENT",
@@ -25,6 +27,7 @@ __all__ = [
     "cumulative_coefficient",
     "fractional_coefficient",
     "limit_19_log_series",
+    "log_growth_envelopes",
     "stationary_autocovariance_derivation",
 ]
 
@@ -59,6 +62,10 @@ STATIONARY_AUTOCOVARIANCE_TAIL = sp.gamma(1 - 2 * d) / (sp.gamma(d) * sp.gamma(1
 AVERAGED_INCREMENT = N ** (2 * d - 1) * k ** (2 * d - 2) / sp.gamma(d) ** 2
 #: Leading term of Var_k of the averaged bins for 1/2 < d < 1 (Var_k = this + C(N, d) + o(1)).
 AVERAGED_GROWTH_ABOVE_HALF = N ** (2 * d - 1) * k ** (2 * d - 1) / ((2 * d - 1) * sp.gamma(d) ** 2)
+#: Bounds on Var_k − Var_2 of the averaged bins at d = 1/2, valid for every N ≥ 1, k ≥ 2 (Section 4,
+#: proofs/proof_flicker_averaged_log_growth.py).
+AVERAGED_LOG_LOWER_BOUND = sp.log((k * N + sp.Rational(1, 2)) / (2 * N + sp.Rational(1, 2))) / sp.pi
+AVERAGED_LOG_UPPER_BOUND = sp.log(k - 1) / sp.pi
 #: Leading term of Var_k of the averaged bins at d = 1/2 (Var_k = log(k)/π + C(N) + o(1)).
 AVERAGED_GROWTH_AT_HALF = sp.log(k) / sp.pi
 #: Leading term of Var_∞ − Var_k of the averaged bins for 0 < d < 1/2 (the variance converges).
@@ -73,6 +80,19 @@ def limit_19_log_series() -> sp.Expr:
     """log(Γ(i + d) / (i^d Γ(i))) expanded at i = ∞ to O(i⁻²) (Stirling series, by SymPy)."""
     series = sp.series(sp.loggamma(_i + d) - sp.loggamma(_i) - d * sp.log(_i), _i, sp.oo, n=2)
     return sp.simplify(series.removeO())
+
+
+def log_growth_envelopes() -> tuple[sp.Expr, sp.Expr]:
+    """At d = 1/2: a_j/a_{j−1} − 1 and b_j/b_{j−1} − 1 for a_j = j ψ_j², b_j = (j + 1/2) ψ_j².
+
+    SymPy reduces them to 1/(4j(j − 1)) > 0 and −1/(4j²) < 0: a increases and b decreases to 1/π,
+    so 1/(π(j + 1/2)) < ψ_j² < 1/(πj) for j ≥ 1.
+    """
+    half = sp.Rational(1, 2)
+    ratio = sp.gammasimp(fractional_coefficient(_j) / fractional_coefficient(_j - 1)).subs(d, half)
+    increasing = sp.factor(sp.simplify(_j / (_j - 1) * ratio**2 - 1))
+    decreasing = sp.factor(sp.simplify((_j + half) / (_j - half) * ratio**2 - 1))
+    return increasing, decreasing
 
 
 def stationary_autocovariance_derivation() -> dict[str, sp.Expr]:
@@ -200,7 +220,15 @@ def _build() -> str:
         f"- 1/2 < d < 1: $\\operatorname{{Var}}_k = {sp.latex(AVERAGED_GROWTH_ABOVE_HALF)} + C(N,d) + o(1)$, "
         "unbounded;\n"
         f"- d = 1/2: $\\operatorname{{Var}}_k = {sp.latex(AVERAGED_GROWTH_AT_HALF)} + C(N) + o(1)$ — "
-        "logarithmic, as TIM 2014 §V-B suspected from Fig. 5 ($\\Gamma(1/2)^2 = \\pi$);\n"
+        "logarithmic, as TIM 2014 §V-B suspected from Fig. 5 ($\\Gamma(1/2)^2 = \\pi$). Rigorously, for "
+        "every N ≥ 1 and k ≥ 2, "
+        f"${sp.latex(AVERAGED_LOG_LOWER_BOUND)} \\le \\operatorname{{Var}}_k - \\operatorname{{Var}}_2 \\le "
+        f"{sp.latex(AVERAGED_LOG_UPPER_BOUND)}$: with $a_j = j\\psi_j^2$, $b_j = (j+\\tfrac12)\\psi_j^2$, "
+        f"SymPy gives $a_j/a_{{j-1}} - 1 = {sp.latex(log_growth_envelopes()[0])}$ and "
+        f"$b_j/b_{{j-1}} - 1 = {sp.latex(log_growth_envelopes()[1])}$, so $1/(\\pi(j+\\frac12)) < \\psi_j^2 "
+        "< 1/(\\pi j)$; $\\psi_j \\le g_j \\le \\psi_{j-N+1}$ (window mean of a decreasing sequence), and "
+        "integral comparison bounds each increment; the sums telescope "
+        "(proofs/proof_flicker_averaged_log_growth.py);\n"
         "- 0 < d < 1/2: the variance **converges**; "
         "$\\operatorname{Var}_\\infty - \\operatorname{Var}_k \\sim "
         f"{sp.latex(AVERAGED_TAIL_BELOW_HALF)}$.\n\n"
