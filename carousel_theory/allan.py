@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -198,16 +199,26 @@ def _non_overlapping_sums(centered: np.ndarray, sizes: np.ndarray, octave: bool)
 
 
 def _overlapping_sums(centered: np.ndarray, sizes: np.ndarray, octave: bool) -> np.ndarray:
-    """Σ over every start sample of the squared difference of adjacent window sums, per cluster size."""
+    """Σ over every start sample of the squared difference of adjacent window sums, per cluster size.
+
+    Overwrites ``centered`` on the octave path (callers pass an array of their own).
+    """
     result = np.empty(len(sizes))
     if octave:
-        window = centered  # window sums of length m at every start
+        # Window sums of length m at every start, doubled in place between two buffers: no allocation
+        # per τ (fresh arrays of 10⁷ samples cost more in page faults than the arithmetic).
+        window, spare = centered, np.empty_like(centered)  # ``centered`` is our own array: reuse it
+        differences = np.empty_like(centered)
+        count = len(centered)  # number of windows of the current length
         for level, m in enumerate(sizes):
             if level:
-                half = m // 2
-                window = window[:-half] + window[half:]
-            differences = window[m:] - window[:-m]
-            result[level] = np.dot(differences, differences)
+                half = int(m) // 2
+                count -= half
+                np.add(window[:count], window[half : half + count], out=spare[:count])
+                window, spare = spare, window
+            terms = count - int(m)
+            np.subtract(window[m : m + terms], window[:terms], out=differences[:terms])
+            result[level] = np.dot(differences[:terms], differences[:terms])
         return result
     cumulative = np.concatenate(([0.0], np.cumsum(centered)))
     for i, m in enumerate(sizes):
@@ -440,6 +451,12 @@ def equivalent_degrees_of_freedom(
     noise: Any, m: int, terms: int, stride: int, length: int, sample_rate: float = 1.0
 ) -> float:
     """ν = K² c(0)² / (K c(0)² + 2 Σ_{l=1}^{K−1} (K − l) c(l p)²) for K terms at stride p (Gaussian noise)."""
+    if isinstance(noise, str) and noise == "white" and stride == 1:
+        # c(l) = 2m − 3l (l ≤ m), l − 2m (m < l < 2m): the sum in exact integers by power sums, O(1).
+        last = min(terms - 1, 2 * m - 1)
+        total = _weighted_square_sum(terms, 2 * m, -3, 1, min(m, last))
+        total += _weighted_square_sum(terms, -2 * m, 1, m + 1, last)
+        return float(Fraction(terms**2 * 4 * m * m, terms * 4 * m * m + 2 * total))
     reach = 2 * m + 1 if not _has_flicker(noise) else length
     count = min(terms, reach // stride + 2)
     lags = np.arange(count, dtype=np.int64) * stride
@@ -447,6 +464,23 @@ def equivalent_degrees_of_freedom(
     weights = terms - np.arange(count, dtype=np.float64)
     denominator = terms * covariance[0] ** 2 + 2.0 * np.dot(weights[1:], covariance[1:] ** 2)
     return float(terms**2 * covariance[0] ** 2 / denominator)
+
+
+def _power_sum(power: int, first: int, last: int) -> int:
+    """Σ_{l=first}^{last} l^power for power 0 … 3 (0 when last < first), in exact integers."""
+    if last < first:
+        return 0
+
+    def upto(n: int) -> int:
+        return (n, n * (n + 1) // 2, n * (n + 1) * (2 * n + 1) // 6, (n * (n + 1) // 2) ** 2)[power]
+
+    return upto(last) - upto(first - 1)
+
+
+def _weighted_square_sum(K: int, a: int, b: int, first: int, last: int) -> int:
+    """Σ_{l=first}^{last} (K − l)(a + b l)², expanded into power sums."""
+    s0, s1, s2, s3 = (_power_sum(p, first, last) for p in range(4))
+    return K * (a * a * s0 + 2 * a * b * s1 + b * b * s2) - (a * a * s1 + 2 * a * b * s2 + b * b * s3)
 
 
 def _has_flicker(noise: Any) -> bool:
