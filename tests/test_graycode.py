@@ -35,18 +35,6 @@ from carousel_theory.graycode import (
 HALF = Fraction(1, 2)
 
 
-@pytest.fixture(autouse=True)
-def _forbid_global_numpy_rng(monkeypatch):
-    """The shared guard, minus ``seed``: Hypothesis seeds (and restores) the global NumPy state
-    around every example, which the shared guard refuses; drawing from it still fails."""
-
-    def refuse(*args, **kwargs):
-        raise AssertionError("the global numpy.random state was used; pass a numpy.random.Generator")
-
-    for name in ("rand", "randn", "random", "normal", "standard_normal", "uniform", "randint"):
-        monkeypatch.setattr(np.random, name, refuse)
-
-
 # ---------------------------------------------------------------------------------------------
 # Independent brute force: Algorithm 1, eq. (22) and the column rule of K, literally, in Fractions
 # ---------------------------------------------------------------------------------------------
