@@ -21,6 +21,7 @@ __all__ = [
     "AVERAGED_LOG_UPPER_BOUND",
     "AVERAGED_TAIL_BELOW_HALF",
     "CAROUSELLED_TAIL",
+    "CAROUSELLED_TAIL_BOUND_HALF",
     "DOCUMENT",
     "STATIONARY_AUTOCOVARIANCE",
     "STATIONARY_AUTOCOVARIANCE_TAIL",
@@ -70,6 +71,9 @@ AVERAGED_LOG_UPPER_BOUND = sp.log(k - 1) / sp.pi
 AVERAGED_GROWTH_AT_HALF = sp.log(k) / sp.pi
 #: Leading term of Var_∞ − Var_k of the averaged bins for 0 < d < 1/2 (the variance converges).
 AVERAGED_TAIL_BELOW_HALF = N ** (2 * d - 1) * k ** (2 * d - 1) / ((1 - 2 * d) * sp.gamma(d) ** 2)
+#: Rigorous bound on Var_∞ − Var_k of the carouselled bins at d = 1/2, N ≥ 2, k ≥ 2
+#: (proofs/proof_flicker_carouselled_convergence.py).
+CAROUSELLED_TAIL_BOUND_HALF = (N - 1) ** 2 / (8 * sp.pi * N**4 * sp.sin(sp.pi / N) ** 2 * (k - 1) ** 2)
 #: Leading term of Var_∞ − Var_k of the carouselled bins (sine + cosine gyro), N ≥ 2, 0 < d < 1.
 CAROUSELLED_TAIL = (
     (1 - d) ** 2 * (k * N) ** (2 * d - 3) / (4 * sp.sin(sp.pi / N) ** 2 * (3 - 2 * d) * sp.gamma(d) ** 2)
@@ -249,7 +253,12 @@ def _build() -> str:
         + sp.latex(CAROUSELLED_TAIL)
         + "$$ to leading order "
         + f"($\\int_{{kN}}^{{\\infty}} x^{{2d-4}}dx = {sp.latex(sp.simplify(tail_integral))}$). "
-        "At d = 1/2, N ≫ 1 this is $\\approx 1/(32\\pi^3 k^2)$.\n"
+        "At d = 1/2, N ≫ 1 this is $\\approx 1/(32\\pi^3 k^2)$. Rigorously (summation by parts with the "
+        "partial sums $Z_u$ of the roots of unity, $|Z_u| \\le 1/\\sin(\\pi/N)$, "
+        "$\\psi_m - \\psi_{m+1} = (1-d)\\psi_m/(m+1)$, and $\\psi_m^2 < 1/(\\pi m)$ at d = 1/2): "
+        f"$\\operatorname{{Var}}_\\infty - \\operatorname{{Var}}_k \\le "
+        f"{sp.latex(CAROUSELLED_TAIL_BOUND_HALF)}$ "
+        "for k ≥ 2 (proofs/proof_flicker_carouselled_convergence.py).\n"
     )
     out.append(_carouselled_table())
 
