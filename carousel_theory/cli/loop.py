@@ -1,0 +1,102 @@
+"""``carousel-theory loop``: fit, predict, find the missing effect, add it, report the error before/after."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+from carousel_theory.closed_loop import run_loop, write_report
+from carousel_theory.data import load_recording
+
+
+def _mapping(text: str) -> tuple[str, str]:
+    ours, equals, theirs = text.partition("=")
+    if not equals or not ours.strip() or not theirs.strip():
+        raise argparse.ArgumentTypeError(f"{text!r}: must be OURS=THEIRS, e.g. wx=gyro_x or temp=T_degC")
+    return ours.strip(), theirs.strip()
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    parser = subparsers.add_parser(
+        "loop",
+        help="closed loop on a static recording: residual -> missing effect -> extended model -> error "
+        "before/after",
+        description=(
+            "Fit bias + white noise + rate random walk to each gyro axis, predict the variance of averaged "
+            "and (virtually) carouselled bins and the Allan variance, test the catalogue of unmodelled "
+            "effects, add the one the evidence supports, refit, and repeat until nothing significant "
+            "remains. DATA is a CSV with a header holding at least t,wx,wy (s, rad/s), optionally temp (°C) "
+            "and phi (rad), or an NPZ with the same keys."
+        ),
+    )
+    parser.add_argument("data", type=Path, metavar="DATA", help="recording (.csv or .npz)")
+    parser.add_argument(
+        "--samples-per-revolution",
+        "-N",
+        type=int,
+        default=200,
+        metavar="N",
+        help="samples per virtual revolution (default 200, as in TIM 2014 §V-C)",
+    )
+    parser.add_argument("--json", type=Path, metavar="OUT", help="write the result as JSON to this file")
+    parser.add_argument(
+        "--report", type=Path, metavar="DIR", help="write plots and summary.md into this directory"
+    )
+    parser.add_argument(
+        "--column",
+        action="append",
+        type=_mapping,
+        default=[],
+        metavar="OURS=THEIRS",
+        help="map a column: time=..., wx=..., wy=..., temperature=..., angle=... (repeatable)",
+    )
+    parser.add_argument("--axes", metavar="A[,B]", help="the gyro axes to analyse (default wx,wy)")
+    parser.add_argument(
+        "--units", default="rad/s", choices=("rad/s", "deg/s", "deg/h"), help="units of the rates"
+    )
+    parser.add_argument(
+        "--sample-rate", type=float, help="samples per second when the file has no time column"
+    )
+    parser.add_argument(
+        "--alpha", type=float, default=0.01, help="false-alarm rate of each test (default 0.01)"
+    )
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    columns = None
+    if args.column:
+        columns = {
+            (
+                "temperature"
+                if ours == "temp"
+                else "angle"
+                if ours == "phi"
+                else "time"
+                if ours == "t"
+                else ours
+            ): theirs
+            for ours, theirs in args.column
+        }
+    axes = None if args.axes is None else tuple(a.strip() for a in args.axes.split(",") if a.strip())
+    if args.json is not None and args.json.is_dir():
+        raise ValueError(f"--json {args.json}: is a directory; give a file name")
+    recording = load_recording(
+        args.data, columns=columns, sample_rate=args.sample_rate, units=args.units, irregular="keep"
+    )
+    result = run_loop(
+        recording, samples_per_revolution=args.samples_per_revolution, axes=axes, alpha=args.alpha
+    )
+    print(f"{result.source}: effects {', '.join(result.effects)}")
+    print(f"{result.metric}: {result.error_before:.4g} before, {result.error_after:.4g} after")
+    for note in result.observations:
+        print(f"note: {note}")
+    if args.json is not None:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(json.dumps(result.as_dict(), indent=1, sort_keys=False) + "\n", encoding="utf-8")
+        print(f"wrote {args.json}")
+    if args.report is not None:
+        written = write_report(result, args.report)
+        print(f"wrote {', '.join(written)} to {args.report}")
+    return 0

@@ -1,0 +1,197 @@
+"""The effect catalogue: stable names, calibrated null distributions, each detector finds its own effect."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from conftest import Z_MONTE_CARLO
+from scipy import stats
+
+from carousel_theory.closed_loop import _FlickerBasis, _ModelSpec, _View
+from carousel_theory.effects import (
+    CATALOGUE,
+    TESTED_EFFECTS,
+    check_effect_parameters,
+    detect_quantization,
+    hann_periodogram,
+)
+from carousel_theory.simulate import simulate_recording
+
+REQUIRED = {"flicker", "warmup", "temperature", "spikes", "sinusoid", "colored_noise", "none"}
+WHITE, WALK = 3.6e-5, 1e-11
+
+
+def _view(effects=(), samples=30_000, seed=1):
+    recording = simulate_recording(
+        samples,
+        100.0,
+        rng=np.random.default_rng(seed),
+        bias=0.01,
+        white_variance=WHITE,
+        rrw_variance=WALK,
+        effects=effects,
+    )
+    return _View(recording, ("wx", "wy"), _ModelSpec(), _FlickerBasis())
+
+
+def test_catalogue_has_the_stable_names_and_says_how():
+    assert REQUIRED | {"steps", "quantization"} == set(CATALOGUE)
+    for name, effect in CATALOGUE.items():
+        assert effect.name == name
+        if name != "none":
+            description = effect.describe()
+            assert all(description[key] for key in ("summary", "detection", "enters_model", "removal"))
+    assert set(TESTED_EFFECTS) == set(CATALOGUE) - {"none", "quantization"}
+
+
+def test_quantization_lattice():
+    rng = np.random.default_rng(0)
+    values = np.round(rng.normal(0, 6e-3, 10_000) / 8.7e-4) * 8.7e-4
+    found = detect_quantization(values)
+    assert found["quantized"]
+    assert found["step"] == pytest.approx(8.7e-4, rel=1e-9)
+    assert not detect_quantization(rng.normal(0, 6e-3, 10_000))["quantized"]
+
+
+def test_hann_periodogram_of_white_noise_has_mean_sigma_squared():
+    rng = np.random.default_rng(3)
+    variance = 4.0
+    _, power = hann_periodogram(np.sqrt(variance) * rng.standard_normal(440_000), 100.0)
+    inner = power[10:-10:2]  # every second ordinate: nearly independent under the Hann window
+    standard_error = variance / np.sqrt(len(inner))  # each ordinate ~ σ² Exp(1)
+    assert 0.02 * variance > Z_MONTE_CARLO * standard_error
+    assert abs(inner.mean() - variance) <= Z_MONTE_CARLO * standard_error
+
+
+def test_spike_statistic_is_gaussian_in_the_tail():
+    """The deviation from the neighbours' median, over its scale, exceeds 3 as often as N(0, 1) does."""
+    rng = np.random.default_rng(5)
+    z, _ = CATALOGUE["spikes"]._robust_z(rng.standard_normal(1_000_000))
+    expected = 2 * stats.norm.sf(3.0)
+    observed = float(np.mean(np.abs(z) > 3.0))
+    standard_error = np.sqrt(expected * (1 - expected) / len(z)) * 3  # ×3: 15-sample windows overlap
+    assert abs(observed - expected) <= Z_MONTE_CARLO * standard_error
+    assert abs(observed - expected) < 0.1 * expected
+
+
+def test_clean_recording_triggers_no_detector():
+    view = _view()
+    for name in TESTED_EFFECTS:
+        detection = CATALOGUE[name].detect(view)
+        assert not detection.significant, (name, detection)
+        json.dumps(detection.as_dict())
+
+
+@pytest.mark.parametrize(
+    ("injection", "name", "check"),
+    [
+        pytest.param(
+            "warmup:amplitude=5e-3,time_constant=30",
+            "warmup",
+            lambda d: 5 <= d.details["time_constant_s"] <= 150,
+            id="warmup",
+        ),
+        pytest.param(
+            "temperature:coefficient=2e-3",
+            "temperature",
+            lambda d: d.details["coefficient_rad_s_per_degC"] > 0,
+            id="temperature",
+        ),
+        pytest.param(
+            "steps:size=2e-3,time=0.4",
+            "steps",
+            lambda d: abs(d.details["time_s"] - 0.4 * 299.99) < 2.0,
+            id="steps",
+        ),
+        pytest.param(
+            "spikes:amplitude=0.06,rate=1e-4",
+            "spikes",
+            lambda d: d.details["samples_beyond_threshold"] >= 1,
+            id="spikes",
+        ),
+        pytest.param(
+            "sinusoid:amplitude=5e-4,frequency=3.3",
+            "sinusoid",
+            lambda d: abs(d.details["frequency_hz"] - 3.3) <= 2 * 100.0 / 30_000,
+            id="sinusoid",
+        ),
+        pytest.param(
+            "colored_noise:coefficient=0.3",
+            "colored_noise",
+            lambda d: d.details["signed_z"] > 0,
+            id="colored_noise",
+        ),
+        pytest.param("flicker:variance=1e-6", "flicker", lambda d: d.statistic > 0, id="flicker"),
+    ],
+)
+def test_each_detector_finds_its_effect(injection, name, check):
+    view = _view([injection])
+    detection = CATALOGUE[name].detect(view)
+    assert detection.significant, detection
+    assert check(detection), detection
+
+
+def test_fitted_sinusoid_and_step_recover_the_parameters():
+    view = _view(["sinusoid:amplitude=5e-4,frequency=3.3,phase=0.4"])
+    detection = CATALOGUE["sinusoid"].detect(view)
+    fitted = CATALOGUE["sinusoid"].fit(view, detection)
+    assert fitted.parameters["wx"]["frequency_hz"] == pytest.approx(3.3, abs=1e-3)
+    assert fitted.parameters["wx"]["amplitude"] == pytest.approx(5e-4, rel=0.15)
+    view = _view(["steps:size=3e-3,time=0.5"])
+    fitted = CATALOGUE["steps"].fit(view, CATALOGUE["steps"].detect(view))
+    jumps = fitted.parameters["wx"]["jumps"]
+    assert len(jumps) == 1
+    assert jumps[0]["height"] == pytest.approx(3e-3, rel=0.3)
+
+
+def test_temperature_not_testable_when_absent_or_constant():
+    recording = simulate_recording(
+        3000, 100.0, rng=np.random.default_rng(0), white_variance=WHITE, temperature=np.full(3000, 25.0)
+    )
+    view = _View(recording, ("wx", "wy"), _ModelSpec(), _FlickerBasis())
+    detection = CATALOGUE["temperature"].detect(view)
+    assert not detection.testable and not detection.significant
+    assert "constant" in detection.note
+    recording = simulate_recording(
+        3000, 100.0, rng=np.random.default_rng(0), white_variance=WHITE, temperature=None
+    )
+    view = _View(recording, ("wx", "wy"), _ModelSpec(), _FlickerBasis())
+    assert "no temperature column" in CATALOGUE["temperature"].detect(view).note
+
+
+@pytest.mark.parametrize(
+    ("call", "error"),
+    [
+        pytest.param(lambda: check_effect_parameters("wobble", {}), ValueError, id="unknown-effect"),
+        pytest.param(lambda: check_effect_parameters("none", {}), ValueError, id="none-has-no-parameters"),
+        pytest.param(
+            lambda: check_effect_parameters("warmup", {"speed": 1.0}), ValueError, id="unknown-parameter"
+        ),
+        pytest.param(
+            lambda: check_effect_parameters("warmup", {"amplitude": np.inf}), ValueError, id="infinite"
+        ),
+        pytest.param(
+            lambda: check_effect_parameters("warmup", {"amplitude": "big"}), TypeError, id="not-a-number"
+        ),
+        pytest.param(
+            lambda: check_effect_parameters("warmup", [("amplitude", 1.0)]), TypeError, id="not-a-mapping"
+        ),
+        pytest.param(
+            lambda: CATALOGUE["quantization"].inject(np.zeros(3), np.arange(3.0), None, None, {"step": 0.0}),
+            ValueError,
+            id="quantization-step-zero",
+        ),
+        pytest.param(
+            lambda: CATALOGUE["temperature"].inject(
+                np.zeros(3), np.arange(3.0), None, None, {"coefficient": 1.0}
+            ),
+            ValueError,
+            id="temperature-without-column",
+        ),
+    ],
+)
+def test_invalid_calls(call, error):
+    with pytest.raises(error):
+        call()
