@@ -175,3 +175,13 @@ INVALID = [
 def test_invalid_arguments_are_refused(call, error):
     with pytest.raises(error):
         call()
+
+
+def test_public_names_exist():
+    import carousel_theory.fast_prediction as fast_module
+    import carousel_theory.long_memory as long_memory_module
+    import carousel_theory.prediction as prediction_module
+
+    for module in (prediction_module, fast_module, long_memory_module):
+        for name in module.__all__:
+            assert hasattr(module, name), f"{module.__name__}.{name}"
