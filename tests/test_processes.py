@@ -31,18 +31,6 @@ from carousel_theory.processes import (
 )
 
 
-@pytest.fixture(autouse=True)
-def _forbid_global_numpy_rng(monkeypatch):
-    """The guard of conftest.py, minus ``seed``: Hypothesis seeds (and restores) the global NumPy
-    state around every example, which the conftest guard refuses; every draw stays refused."""
-
-    def refuse(*args, **kwargs):
-        raise AssertionError("the global numpy.random state was used; pass a numpy.random.Generator")
-
-    for name in ("rand", "randn", "random", "normal", "standard_normal", "uniform", "randint"):
-        monkeypatch.setattr(np.random, name, refuse)
-
-
 def gamma_ratio(d: sp.Rational, j: int) -> sp.Rational:
     """ψ_j of TIM 2014 eq. (3) straight from its Gamma form, simplified to a rational by SymPy."""
     value = sp.gammasimp(sp.gamma(j + d) / (sp.gamma(j + 1) * sp.gamma(d)))

@@ -27,18 +27,6 @@ from carousel_theory.propagation import (
 )
 from carousel_theory.weights import carousel_weights_from_angles
 
-
-@pytest.fixture(autouse=True)
-def _forbid_global_numpy_rng(monkeypatch):
-    """conftest's guard minus ``seed``, which Hypothesis calls around every example; draws stay refused."""
-
-    def refuse(*args, **kwargs):
-        raise AssertionError("the global numpy.random state was used; pass a numpy.random.Generator")
-
-    for name in ("rand", "randn", "random", "normal", "standard_normal", "uniform", "randint"):
-        monkeypatch.setattr(np.random, name, refuse)
-
-
 ORDERS = [Fraction(1, 2), Fraction(1, 3)]
 SIZES = [(N, k) for N in range(1, 13) for k in range(1, 5)]
 

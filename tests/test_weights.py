@@ -19,17 +19,6 @@ from carousel_theory.weights import (
 )
 
 
-@pytest.fixture(autouse=True)
-def _forbid_global_numpy_rng(monkeypatch):
-    """conftest's guard minus ``seed``, which Hypothesis calls around every example; draws stay refused."""
-
-    def refuse(*args, **kwargs):
-        raise AssertionError("the global numpy.random state was used; pass a numpy.random.Generator")
-
-    for name in ("rand", "randn", "random", "normal", "standard_normal", "uniform", "randint"):
-        monkeypatch.setattr(np.random, name, refuse)
-
-
 def test_averaging_weights_eq12():
     np.testing.assert_array_equal(averaging_weights(4), [0.25] * 4)
     assert averaging_weights(1).tolist() == [1.0]

@@ -132,7 +132,8 @@ def run(args: argparse.Namespace) -> int:
     if args.exact:
         exact_value = exact
         assert exact_value is not None
-        value = format_value(mpmath.mpf(str(sp.N(exact_value, DEFAULT_DIGITS + 10))), DEFAULT_DIGITS)
+        with mpmath.workdps(DEFAULT_DIGITS + 10):  # the mpf must carry the digits it is printed with
+            value = format_value(mpmath.mpf(str(sp.N(exact_value, DEFAULT_DIGITS + 10))), DEFAULT_DIGITS)
         digits = DEFAULT_DIGITS
     else:
         value = format_value(entry.evaluate(digits=digits, **values), digits)
