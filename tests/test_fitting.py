@@ -132,6 +132,17 @@ def test_fitted_order_is_found_on_a_long_flicker_record():
     assert result.standard_errors["flicker_d"] < 0.05
 
 
+def test_quantization_is_identified_within_its_standard_error():
+    rng = np.random.default_rng(5)
+    length, sample_rate, Q = 20_000, 10.0, 0.05
+    angle_error = Q * rng.standard_normal(length + 1)
+    y = 0.3 * rng.standard_normal(length) + np.diff(angle_error) * sample_rate
+    result = fit_noise_model(y, sample_rate, ("white", "quantization"))
+    for name, truth in (("white_variance", 0.09), ("quantization_squared", Q**2)):
+        assert abs(result.value(name) - truth) <= Z_MONTE_CARLO * result.standard_errors[name], name
+        assert result.standard_errors[name] < 0.05 * truth
+
+
 def test_result_reports_units_and_model_curve():
     rng = np.random.default_rng(4)
     y = 1e-3 * rng.standard_normal(20_000) + 1e-6 * np.cumsum(rng.standard_normal(20_000)) + 0.01
