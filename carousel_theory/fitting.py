@@ -9,9 +9,12 @@ the Allan variance estimates *across* τ, computed exactly for Gaussian noise fr
 (Cov(Σd², Σd'²) = 2 ΣΣ cov(d, d')², the same filters as the confidence intervals), iterated from an
 ordinary fit. With a model-based C the weights do not depend on the noise in each point, which avoids
 the downward bias of weighting with the observed Allan variance. Standard errors are the square roots
-of the diagonal of (AᵀC⁻¹A)⁻¹; the order d, when fitted, is profiled (the GLS objective is minimised
-over d, and its standard error comes from the curvature of the profile, where the objective behaves
-as a χ² statistic). A bound (a variance at zero) is reported rather than hidden.
+of the diagonal of (JᵀC⁻¹J)⁻¹ with J the Jacobian of the model curve; the order d, when fitted, is
+profiled (the GLS objective is minimised over d) and enters J through ∂(Aθ)/∂d, so the variances'
+errors include the uncertainty of d. A bound (a variance at zero) is reported rather than hidden.
+On simulated records (tests/test_fitting.py) the estimates are unbiased and the mean squared standard
+error matches the Monte Carlo variance; a variance identified by few long-τ points (rate random walk) is
+skewed, so :meth:`FitResult.interval` gives χ² intervals with ν = 2θ̂²/SE² rather than θ̂ ± 1.96 SE.
 
 Why this and not a likelihood: the exact Gaussian likelihood of white + rate random walk + 1/f noise
 is cheap only under a stationary spectral (Whittle) approximation, and real recordings are not white at
