@@ -264,7 +264,7 @@ def _component_filters(
     return filters
 
 
-@functools.lru_cache(maxsize=8)
+@functools.lru_cache(maxsize=2)  # arrays of the record length: keep few
 def _cumulative_psi(d: float, length: int) -> np.ndarray:
     """Ψ_u = Σ_{k≤u} ψ_k, u = 0 … length−1 (cached: the fit evaluates it for many τ at one d)."""
     values = np.cumsum(fractional_coefficients(d, length))
