@@ -20,14 +20,16 @@ One iteration
        Allan variance at each τ and axis, of the carouselled-bin variance ratio and of the tail
        (kurtosis) of each axis: about 1 when the model is right, large when it is not.
     4. **Test the catalogue** (:mod:`carousel_theory.effects`): every detector whose family-wise p-value
-       is below ``alpha`` is a candidate; candidates are tried from the smallest p-value.
+       is below ``alpha`` is a candidate; the three with the smallest p-values are tried, in that order.
     5. **Add** the candidate, refit, recompute every metric. It is kept only when the headline error
        drops, no noise variance has to grow by more than 2 standard errors to absorb what a deterministic
        effect leaves, and the effect explains its own evidence (its detector, rerun on the new residual, is no
        longer significant; for 1/f noise, the Allan variance then fits; for colored noise, whose real
        filters are not exactly AR(p ≤ 4), a 95 % drop of the evidence's −log p is kept as "most of it").
     6. **Repeat**; stop when no detector is significant (``none`` if nothing was added) or when every
-       significant candidate is rejected (``unexplained``).
+       significant candidate is rejected (``unexplained``). ``unexplained`` is also appended when no
+       detector fires but the Allan variance still misfits the model (largest |z| over τ and axes,
+       Bonferroni, at ``alpha``).
 """
 
 from __future__ import annotations
@@ -73,6 +75,10 @@ __all__ = [
 
 #: Name of the headline error measure reported as ``error_before`` / ``error_after``.
 HEADLINE_METRIC = "standardized_misfit"
+#: Candidates tried per iteration, from the smallest p-value.
+MAXIMUM_TRIALS = 3
+#: Long records are reduced to at most this many block means to choose the GLS weights of trend tests.
+GLS_BLOCKS = 50_000
 #: Fewest clusters an Allan-variance point needs to enter the fit (τ ≤ T/8).
 MINIMUM_CLUSTERS = 8
 #: Fewest bins the virtual carouseling needs.
@@ -221,11 +227,12 @@ class _FlickerBasis:
 
 def _yule_walker(x: np.ndarray, sample_rate: float, maximum_order: int) -> tuple[float, ...]:
     """AR coefficients by Yule–Walker on the residual with its slow part (rate random walk, 1/f, trends)
-    removed by a centred 1-s moving average; the order is the largest p ≤ maximum_order whose partial
+    removed by a centred 10-s moving average (a shorter one biases the lag covariances by about
+    −(long-run variance)/window); the order is the largest p ≤ maximum_order whose partial
     autocorrelation exceeds 4/√n (Levinson–Durbin)."""
     from scipy.ndimage import uniform_filter1d
 
-    window = max(101, round(sample_rate) | 1)
+    window = max(1001, round(10 * sample_rate) | 1)
     fast = x - uniform_filter1d(x, window, mode="nearest")
     n = len(fast)
     spectrum = np.fft.rfft(fast, 2 * n)
@@ -408,12 +415,30 @@ class _View:
             total += noise.flicker_variance * weighted_sum_variance(weights, "flicker", d=noise.flicker_d)
         return total
 
+    @property
+    def gls_block(self) -> int:
+        """Samples per block of the GLS trend statistics: records longer than GLS_BLOCKS samples are
+        reduced to block means for the *choice* of the weights (their variance stays exact, per sample)."""
+        return max(1, math.ceil(len(self.time) / GLS_BLOCKS))
+
+    def _block_means(self, values: np.ndarray) -> np.ndarray:
+        block = self.gls_block
+        count = len(values) // block
+        return values[: count * block].reshape(count, block).mean(axis=1)
+
+    def _expand(self, block_weights: np.ndarray) -> np.ndarray:
+        block = self.gls_block
+        expanded = np.repeat(block_weights / block, block)
+        return np.concatenate((expanded, np.zeros(len(self.time) - len(expanded))))
+
     def _difference_covariance_bands(self, noise: AxisNoise) -> np.ndarray:
         # Differences Δx_t = q_t + w_t − w_{t−1} of white + rate random walk: MA(1) with γ₀ = σ_q² + 2σ²,
         # γ₁ = −σ²; a floor on σ_q² keeps the tridiagonal system well conditioned when no walk is fitted.
-        white = noise.long_run_variance
-        walk = max(noise.rrw_variance, 1e-8 * white)
-        size = len(self.time) - 1
+        # On block means of b samples: white σ²/b, walk increments ≈ σ_q² b.
+        block = self.gls_block
+        white = noise.long_run_variance / block
+        walk = max(noise.rrw_variance * block, 1e-8 * white)
+        size = len(self.time) // block - 1
         bands = np.empty((2, size))
         bands[0, :] = -white
         bands[0, 0] = 0.0
@@ -423,30 +448,33 @@ class _View:
     def gls_weights(self, axis: str, regressor: np.ndarray, noise: AxisNoise | None = None) -> np.ndarray:
         """Sample weights w of the generalised-least-squares projection on ``regressor`` under white noise +
         rate random walk: w = Dᵀ Σ_Δ⁻¹ D g, D the first difference (which also removes the bias), Σ_Δ the
-        tridiagonal covariance of the differences. Σ w_t y_t is the GLS statistic; its exact variance under
-        the full model (1/f included) is :meth:`statistic_variance` of w."""
+        tridiagonal covariance of the differences (on block means for long records). Σ w_t y_t is the GLS
+        statistic; its exact variance under the full model (1/f included) is :meth:`statistic_variance`."""
         noise = self.noise[axis] if noise is None else noise
         solved = solveh_banded(
-            self._difference_covariance_bands(noise), np.diff(regressor), check_finite=False
+            self._difference_covariance_bands(noise),
+            np.diff(self._block_means(regressor)),
+            check_finite=False,
         )
-        return np.concatenate(([0.0], solved)) - np.concatenate((solved, [0.0]))
+        return self._expand(np.concatenate(([0.0], solved)) - np.concatenate((solved, [0.0])))
 
     def gls_difference_solve(self, axis: str, vector: np.ndarray) -> np.ndarray:
-        """Σ_Δ⁻¹ v for the tridiagonal covariance of the first differences under the fitted model."""
+        """Σ_Δ⁻¹ v for the tridiagonal covariance of the (block) differences under the fitted model."""
         return solveh_banded(self._difference_covariance_bands(self.noise[axis]), vector, check_finite=False)
 
     def gls_step_scan(self, axis: str) -> tuple[np.ndarray, np.ndarray, float]:
-        """(u, weights of a step in the middle, its information (Σ_Δ⁻¹)_mm).
+        """(u, sample weights of a step in the middle, its information (Σ_Δ⁻¹)_mm).
 
-        u_t = (Σ_Δ⁻¹ Δx)_t is the GLS statistic of a bias step between samples t and t+1, for every t."""
+        u_j = (Σ_Δ⁻¹ Δx)_j is the GLS statistic of a bias step after block j (sample (j + 1)·gls_block),
+        for every j at once."""
         key = ("scan", axis)
         if key not in self._cache:
             bands = self._difference_covariance_bands(self.noise[axis])
-            u = solveh_banded(bands, np.diff(self.residuals[axis]), check_finite=False)
+            u = solveh_banded(bands, np.diff(self._block_means(self.residuals[axis])), check_finite=False)
             impulse = np.zeros(len(u))
             impulse[len(u) // 2] = 1.0
             solved = solveh_banded(bands, impulse, check_finite=False)
-            weights = np.concatenate(([0.0], solved)) - np.concatenate((solved, [0.0]))
+            weights = self._expand(np.concatenate(([0.0], solved)) - np.concatenate((solved, [0.0])))
             self._cache[key] = (u, weights, float(solved[len(u) // 2]))
         return self._cache[key]
 
@@ -902,6 +930,14 @@ def run_loop(
     if unknown or not {"white", "rrw"} <= set(declared):
         raise ValueError(f"declared={declared!r}: must hold 'white' and 'rrw', optionally 'flicker'")
     observations: list[str] = list(recording.notes)
+    # The lattice test needs the samples as recorded (averaging onto a uniform grid would hide it).
+    for axis in (a for a in (axes or ("wx", "wy")) if a in recording.rates):
+        lattice = detect_quantization(recording.rates[axis])
+        if lattice["quantized"]:
+            observations.append(
+                f"quantization on {axis}: step {lattice['step']:.4g} rad/s, {lattice['levels']} levels "
+                f"(noise q²/12 = {lattice['step'] ** 2 / 12:.3g} (rad/s)² is inside the white term)"
+            )
     if not recording.uniform:
         recording, note = uniform_resample(recording)
         observations.append(note)
@@ -929,13 +965,6 @@ def run_loop(
         observations.append(
             "phi column present: carouselled bins use the measured angles, one bin per revolution"
         )
-    for axis in axes:
-        lattice = detect_quantization(recording.rates[axis])
-        if lattice["quantized"]:
-            observations.append(
-                f"quantization on {axis}: step {lattice['step']:.4g} rad/s, {lattice['levels']} levels "
-                f"(noise q²/12 = {lattice['step'] ** 2 / 12:.3g} (rad/s)² is inside the white term)"
-            )
     if recording.temperature is None:
         observations.append("no temperature column: the temperature effect cannot be tested")
     elif float(np.ptp(recording.temperature)) == 0.0:
@@ -968,7 +997,8 @@ def run_loop(
             record["decision"] = "nothing significant remains"
             break
         kept = None
-        for detection in significant:
+        # The three best-supported candidates are tried; weaker evidence is rarely the cause of stronger.
+        for detection in significant[:MAXIMUM_TRIALS]:
             effect = CATALOGUE[detection.effect]
             fitted = effect.fit(current.view, detection, alpha)
             new_spec = replace(
@@ -1038,6 +1068,31 @@ def run_loop(
         # The iteration budget ran out: whatever is still significant is unexplained.
         if any(d.significant for n, d in current.detections.items() if n not in tried_and_kept):
             unexplained = True
+    if not unexplained:
+        # No detector fires, but the Allan variance may still disagree with the model beyond its intervals:
+        # the largest |z| over τ and axes, Bonferroni over all of them (each z from χ²_ν with the EDF).
+        fits = [current.view.fits[axis] for axis in axes]
+        tests = sum(len(fit.allan_sizes) for fit in fits)
+        worst_axis, worst_z = axes[0], 0.0
+        for axis, fit in zip(axes, fits, strict=True):
+            z = _z_from_chi_square(fit.allan_observed, fit.allan_model, fit.allan_edf)
+            if len(z) and float(np.max(np.abs(z))) > abs(worst_z):
+                worst_axis, worst_z = axis, float(z[np.argmax(np.abs(z))])
+        log10_p = min(0.0, (math.log(2.0 * tests) + float(stats.norm.logsf(abs(worst_z)))) / math.log(10.0))
+        if log10_p < math.log10(alpha):
+            unexplained = True
+            steps.append(
+                {
+                    "iteration": len(steps) + 1,
+                    "error": current.headline,
+                    "detections": [],
+                    "tried": [],
+                    "decision": (
+                        f"unexplained: the Allan variance of {worst_axis} still misfits the model "
+                        f"(largest z = {worst_z:.3g} over {tests} τ and axes, log10 p = {log10_p:.3g})"
+                    ),
+                }
+            )
     if not unexplained:
         # A stochastic effect kept for "most of its evidence" leaves the rest unexplained.
         for name in effects:

@@ -85,6 +85,9 @@ class ResidualView(Protocol):
 
     def gls_difference_solve(self, axis: str, vector: np.ndarray) -> np.ndarray: ...
 
+    @property
+    def gls_block(self) -> int: ...
+
     def noise_psd(self, axis: str, frequencies: np.ndarray) -> np.ndarray: ...
 
     def allan_chi_square(self, axis: str, extra: tuple[str, ...] = ()) -> tuple[float, int]: ...
@@ -365,7 +368,7 @@ class Warmup(Effect):
         # The time constant maximising the GLS fit (the detector's own criterion) on a fine grid around
         # the detected one; the amplitude by GLS. Nonlinear least squares on the raw samples would ignore
         # the random walk and leave part of the transient behind.
-        fine = np.geomspace(max(centre / 4.0, grid[0] / 2.0), min(centre * 4.0, grid[-1] * 2.0), 25)
+        fine = np.geomspace(max(centre / 4.0, grid[0] / 2.0), min(centre * 4.0, grid[-1] * 2.0), 13)
         signals, fitted = {}, {}
         for axis in view.axes:
             best = (-1.0, centre, 0.0)
@@ -489,13 +492,13 @@ class Steps(Effect):
 
     def detect(self, view, alpha=DEFAULT_ALPHA):
         n = len(view.time)
-        tests = (n - 1) * len(view.axes)
+        tests = (n // view.gls_block - 1) * len(view.axes)
         threshold = _threshold_two_sided(alpha, tests)
         best, best_axis, best_at, best_height, axes = 0.0, "", 0, 0.0, []
         for axis in view.axes:
             z_all, sd, information = self._quick_scan(view, axis)
             index = int(np.argmax(np.abs(z_all)))
-            at = index + 1
+            at = (index + 1) * view.gls_block
             # Under the model fitted with the data as they are (no refit): a refit without the largest
             # increment of the random walk lowers σ_q² enough to make the scan's maximum anticonservative.
             z, height = float(z_all[index]), float(z_all[index] * sd / information)
@@ -516,7 +519,7 @@ class Steps(Effect):
 
     def fit(self, view, detection, alpha=DEFAULT_ALPHA):
         n = len(view.time)
-        threshold = _threshold_two_sided(alpha, (n - 1) * len(view.axes))
+        threshold = _threshold_two_sided(alpha, (n // view.gls_block - 1) * len(view.axes))
         signals, fitted = {}, {}
         for axis in view.axes:
             z_all, sd, information = self._quick_scan(view, axis)
@@ -528,9 +531,9 @@ class Steps(Effect):
                 if abs(statistic[index]) / sd <= threshold:
                     break
                 height = float(statistic[index] / information)
-                at = index + 1
+                at = (index + 1) * view.gls_block
                 # Remove this jump from the scan: u changes by height · Σ_Δ⁻¹ e_index.
-                impulse = np.zeros(n - 1)
+                impulse = np.zeros(len(statistic))
                 impulse[index] = 1.0
                 statistic = statistic - height * view.gls_difference_solve(axis, impulse)
                 step = height * (np.arange(n) >= at)
@@ -890,7 +893,8 @@ def detect_quantization(values: np.ndarray) -> dict[str, Any]:
         return {"quantized": False, "step": 0.0, "levels": len(levels)}
     spacing = np.diff(levels)
     step = float(spacing.min())
-    if step <= 0:
+    # A step at the rounding level of float64 is no lattice (averaged or converted data).
+    if step <= 1e-9 * float(levels[-1] - levels[0]):
         return {"quantized": False, "step": 0.0, "levels": len(levels)}
     multiples = (levels - levels[0]) / step
     on_lattice = bool(
