@@ -1,0 +1,155 @@
+"""The model-and-definitions claims of TIM 2014 (§I–§III, eq. (26), §V-A set-up): every check decides
+(none FAILED) and reaches the status an independent reading of the paper expects; the cheap checks are
+shown to detect a wrong statement when fed a perturbed one; the helpers are checked two ways."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from carousel_theory.claim import Status
+from carousel_theory.claims import all_claims
+from carousel_theory.claims import tim2014_model_and_definitions as module
+
+#: Status each claim must reach; decided from the paper's text, not read from the checks.
+EXPECTED = {
+    "TIM2014-eq1-bias-random-constant": Status.VERIFIED,
+    "TIM2014-secIIA-bias-embeddable": Status.VERIFIED,
+    "TIM2014-secIIB-white-angular-random-walk": Status.VERIFIED,
+    "TIM2014-secIIB-quantization-white": Status.ERRATUM,
+    "TIM2014-secIIB-thermal-white": Status.VERIFIED,
+    "TIM2014-secIIC-rrw-sources": Status.NOT_CHECKABLE,
+    "TIM2014-secIIC-rrw-memoryless-future": Status.ERRATUM,
+    "TIM2014-eq3-fractional-integral": Status.PROVED,
+    "TIM2014-secI-flicker-name-spectral": Status.PROVED,
+    "TIM2014-secIID-physical-origin-unknown": Status.NOT_CHECKABLE,
+    "TIM2014-eq4-measurement-model": Status.PROVED,
+    "TIM2014-eq5-estimator": Status.PROVED,
+    "TIM2014-eq5-perpendicular-estimator": Status.PROVED,
+    "TIM2014-eq6-revolution-average": Status.PROVED,
+    "TIM2014-eq7-continuous-bias-integral": Status.PROVED,
+    "TIM2014-secIIIA-integer-ratio-assumption": Status.VERIFIED,
+    "TIM2014-secIIIB-averaging-decreases-variance": Status.PROVED,
+    "TIM2014-eq10-cumulative-sum-matrix": Status.VERIFIED,
+    "TIM2014-eq11-partition": Status.VERIFIED,
+    "TIM2014-eq12-integrator-vector": Status.VERIFIED,
+    "TIM2014-eq13-carousel-vectors": Status.VERIFIED,
+    "TIM2014-eq14-two-bin-means": Status.VERIFIED,
+    "TIM2014-eq15-block-expansion": Status.VERIFIED,
+    "TIM2014-eq16-carouselled-averages": Status.VERIFIED,
+    "TIM2014-eq17-block-entries": Status.VERIFIED,
+    "TIM2014-secIIIC-period-not-explicit": Status.PROVED,
+    "TIM2014-secIIIC-driving-variance-sampling-rate": Status.PROVED,
+    "TIM2014-eq26-cov-x-identity": Status.PROVED,
+    "TIM2014-secVA-simulation-setup": Status.VERIFIED,
+}
+
+
+def test_the_module_registers_exactly_the_expected_claims():
+    assert sorted(claim.id for claim in module.CLAIMS) == sorted(EXPECTED)
+    registry = {claim.id for claim in all_claims()}  # refuses duplicate ids across modules
+    assert set(EXPECTED) <= registry
+
+
+@pytest.mark.parametrize("claim", module.CLAIMS, ids=lambda claim: claim.id)
+def test_every_check_decides_as_expected(claim):
+    verdict = claim.check()
+    assert verdict.status is not Status.FAILED, verdict.evidence
+    assert verdict.status is EXPECTED[claim.id], verdict.evidence
+    assert verdict.evidence.strip() and len(verdict.evidence) < 700
+    assert (verdict.corrected is not None) == (verdict.status is Status.ERRATUM)
+    assert claim.check().evidence == verdict.evidence  # deterministic
+
+
+# --- the checks detect a wrong statement ---------------------------------------------------------
+
+
+def test_estimator_check_refutes_a_wrong_sign():
+    assert module._check_estimator(sign_x=1).status is Status.REFUTED
+    assert module._check_estimator(sign_y=-1).status is Status.REFUTED
+
+
+def test_partition_check_refutes_a_wrong_lower_left_block():
+    assert module._check_partition(range(1, 4), lower_left=2).status is Status.REFUTED
+    assert module._check_partition(range(1, 4), lower_left=0).status is Status.REFUTED
+
+
+def test_eq15_check_refutes_a_wrong_ones_term():
+    assert module._check_eq15_block_expansion(range(2, 4), ones_block_cube=2).status is Status.REFUTED
+
+
+def test_quantization_check_accepts_inputs_that_give_no_correlated_error():
+    # integer inputs are quantized without error: nothing to refute there
+    verdict = module._check_quantization_white(constant=Fraction(0), ramp_step=Fraction(1))
+    assert verdict.status is Status.VERIFIED
+
+
+def test_thermal_check_refutes_whiteness_beyond_kt_over_h():
+    assert module._check_thermal_white(frequency=1e13).status is Status.REFUTED
+
+
+def test_flicker_name_check_refutes_one_over_f_at_other_orders():
+    assert module._check_flicker_name(order=Fraction(1, 4)).status is Status.REFUTED
+    assert module._check_flicker_name(order=Fraction(3, 4)).status is Status.REFUTED
+
+
+def test_integer_ratio_check_refutes_when_the_ratio_is_an_integer():
+    verdict = module._check_integer_ratio_needed(samples=8, samples_per_revolution=Fraction(8))
+    assert verdict.status is Status.REFUTED
+
+
+def test_covariance_identity_check_refutes_the_two_by_two_for_three_columns():
+    assert module._check_covariance_identity(order=3).status is Status.REFUTED
+
+
+def test_simulation_setup_check_refutes_a_wrong_case_count():
+    assert module._check_rrw_simulation_setup(printed_cases=2000).status is Status.REFUTED
+    assert module._check_rrw_simulation_setup(realisations=1000).status is Status.REFUTED
+
+
+# --- the helpers, two ways -----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("size", [1, 2, 5])
+def test_cumulative_sum_matrices_equal_numpy_lower_triangles(size):
+    assert np.array_equal(
+        np.array(module._cumulative_sum_matrix(size), dtype=int), np.tril(np.ones((size, size)))
+    )
+    assert np.array_equal(
+        np.array(module._partitioned_matrix(size), dtype=int), np.tril(np.ones((2 * size, 2 * size)))
+    )
+
+
+def test_conditional_covariances_of_the_walk_by_hand():
+    # r_4 = r_3 + q_4 and r_3 = r_2 + q_3: given r_2, Cov(r_3, r_4) = Var q_3 = 1; r_1 is in the past
+    assert module._conditional_covariance(6, (3, 4), (2,)) == 1
+    assert module._conditional_covariance(6, (3, 1), (2,)) == 0
+    # given both neighbours r_2 and r_4, r_3 is a bridge value, independent of r_5
+    assert module._conditional_covariance(6, (3, 5), (2, 4)) == 0
+    # conditional variance of r_3 given r_2, r_4: the Brownian-bridge value 1·1/2
+    assert module._conditional_covariance(6, (3, 3), (2, 4)) == sp.Rational(1, 2)
+
+
+def test_quantization_helpers_on_hand_values():
+    assert module._quantization_errors([Fraction(1, 3), Fraction(1, 2), Fraction(-7, 10)]) == [
+        Fraction(-1, 3),
+        Fraction(1, 2),
+        Fraction(-3, 10),
+    ]
+    assert module._centred_autocorrelation([Fraction(1), Fraction(-1)] * 3, 1) == -1
+    assert module._centred_autocorrelation([Fraction(2)] * 4, 1) == 0
+    moments = module._dithered_error_moments()
+    assert all(not moment.free_symbols for moment in moments)
+
+
+def test_dithered_error_is_uniform_by_exact_enumeration():
+    # x = 3/10 with dither on a grid of 10 000 midpoints of [−1/2, 1/2): the error takes each grid value once
+    steps = 10_000
+    dithers = [Fraction(2 * index + 1, 2 * steps) - Fraction(1, 2) for index in range(steps)]
+    x = Fraction(3, 10)
+    errors = sorted(module._round_to_step(x + u) - (x + u) for u in dithers)
+    expected = sorted(Fraction(2 * index + 1, 2 * steps) - Fraction(1, 2) for index in range(steps))
+    assert errors == expected
