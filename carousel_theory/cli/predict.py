@@ -242,8 +242,8 @@ def _simulated_table(args: argparse.Namespace) -> dict:
     h = check_positive_integer("--horizon", args.horizon if args.horizon is not None else n)
     rng = np.random.default_rng(check_positive_integer("--seed", args.seed, minimum=0))
     chunk = 100
-    ie = {m: [] for m in METHODS}
-    rsse = {m: [] for m in METHODS}
+    ie: dict[str, list[np.ndarray]] = {m: [] for m in METHODS}
+    rsse: dict[str, list[np.ndarray]] = {m: [] for m in METHODS}
     for start in progress(range(0, runs, chunk), total=math.ceil(runs / chunk), label="Table I runs (×100)"):
         sections = simulate_sections(min(chunk, runs - start), n + h, model, rng=rng)
         for method in METHODS:
@@ -264,7 +264,7 @@ def _simulated_table(args: argparse.Namespace) -> dict:
         }
     }
     for method in progress(METHODS, label="population values"):
-        summary = summarize_metrics(np.concatenate(ie[method]), np.concatenate(rsse[method])).as_dict()
+        summary: dict = summarize_metrics(np.concatenate(ie[method]), np.concatenate(rsse[method])).as_dict()
         population, mean_square = population_metrics(n, h, method, model)
         summary["population"] = {**population.as_dict(), "mean_square_rsse": mean_square}
         summary["paper"] = dict(zip(ROWS, PAPER_SIMULATED[method], strict=True))
@@ -339,7 +339,7 @@ def _measured_table(args: argparse.Namespace) -> dict:
         }
         for method in progress(METHODS, label=f"{axis}: predictors"):
             ie, rsse = batch_metrics(sections, n, method, model)
-            summary = summarize_metrics(ie * RAD_TO_DEG, rsse * RAD_TO_DEG).as_dict()
+            summary: dict = summarize_metrics(ie * RAD_TO_DEG, rsse * RAD_TO_DEG).as_dict()
             summary["paper"] = dict(zip(ROWS, PAPER_REAL[method], strict=True))
             entry[method] = summary
         result["axes"][axis] = entry
