@@ -45,6 +45,9 @@ EXPECTED = {
     "TIM2014-secIIIC-driving-variance-sampling-rate": Status.PROVED,
     "TIM2014-eq26-cov-x-identity": Status.PROVED,
     "TIM2014-secVA-simulation-setup": Status.VERIFIED,
+    "TIM2014-secIIIC-averages-correlated": Status.PROVED,
+    "TIM2014-sec4-sequence-variance-depends-on-length": Status.VERIFIED,
+    "TIM2014-sec4-pure-flicker-allan-constant": Status.VERIFIED,
 }
 
 
@@ -108,6 +111,25 @@ def test_covariance_identity_check_refutes_the_two_by_two_for_three_columns():
 def test_simulation_setup_check_refutes_a_wrong_case_count():
     assert module._check_rrw_simulation_setup(printed_cases=2000).status is Status.REFUTED
     assert module._check_rrw_simulation_setup(realisations=1000).status is Status.REFUTED
+
+
+def test_flicker_allan_check_refutes_a_constant_allan_variance_at_other_orders():
+    assert module._check_flicker_allan_constant(order=0.25).status is Status.REFUTED
+    assert module._check_flicker_allan_constant(order=0.75).status is Status.REFUTED
+
+
+def test_averages_correlation_by_brute_force():
+    # Corr of the two bin means from dense R_2 (Fractions), N = 3: Cov = 2, V_1 = 14/9, V_2 = 14/9 + 3
+    n = 3
+    walk = [[Fraction(int(u <= t)) for u in range(2 * n)] for t in range(2 * n)]  # R_2 rows
+    first = [sum(walk[t][u] for t in range(n)) / n for u in range(2 * n)]
+    second = [sum(walk[t][u] for t in range(n, 2 * n)) / n for u in range(2 * n)]
+    covariance = sum(p * q for p, q in zip(first, second, strict=True))
+    variances = (sum(p * p for p in first), sum(q * q for q in second))
+    assert (covariance, variances) == (Fraction(2), (Fraction(14, 9), Fraction(41, 9)))
+    evidence = module._check_averages_correlated(n_value=3).evidence
+    expected = sp.N(2 / sp.sqrt(sp.Rational(14, 9) * sp.Rational(41, 9)), 6)
+    assert f"{expected} at N = 3" in evidence
 
 
 # --- the helpers, two ways -----------------------------------------------------------------------

@@ -20,7 +20,9 @@ import numpy as np
 import sympy as sp
 
 from carousel_theory import closed_forms as cf
+from carousel_theory.allan import flicker_allan_variance, model_allan_variance
 from carousel_theory.claim import Claim, Status, Verdict
+from carousel_theory.fitting import NoiseModel
 from carousel_theory.graycode import gray_matrix
 from carousel_theory.processes import (
     bias_covariance,
@@ -158,6 +160,13 @@ def _check_quantization_white(
     uniform = [sp.Integer(0), sp.Rational(1, 12), sp.Integer(0), sp.Rational(1, 80)]
     if moments != uniform:
         return Verdict(Status.FAILED, f"dithered error moments {moments}")
+    # The gyro-standard quantization term (angle quantization Q, NoiseModel.quantization) is the first
+    # difference of white angle noise: Cov(e_t, e_{t+1}) = −σ², Var e_t = 2σ², and Allan slope −2.
+    difference = np.diff(np.eye(4, dtype=np.int64), axis=0)  # rows: a_{t+1} − a_t
+    difference_covariance = difference @ difference.T
+    difference_lag_one = Fraction(int(difference_covariance[0, 1]), int(difference_covariance[0, 0]))
+    slope = model_allan_variance(NoiseModel(sample_rate=1.0, quantization=1.0), np.array([4, 8]))
+    allan_slope = float(np.log2(slope[1] / slope[0]))
     if constant_errors[0] == 0 and abs(ramp_lag_one) < Fraction(1, 10):
         return Verdict(Status.VERIFIED, "both inputs give zero-mean, uncorrelated quantization errors")
     return Verdict(
@@ -166,7 +175,9 @@ def _check_quantization_white(
         f"{constant_errors[0]} at every sample (a bias, not zero-mean noise), and the ramp t·{ramp_step} a "
         f"sawtooth of period {period} with centred lag-1 autocorrelation {ramp_lag_one}. With subtractive "
         "dither uniform over one step the error has the uniform moments 0, 1/12, 0, 1/80 for every input "
-        "(proved), and independent dithers make it white.",
+        f"(proved), and independent dithers make it white. The gyro-standard angle-quantization term is the "
+        f"difference of white angle noise: lag-1 autocorrelation {difference_lag_one}, Allan slope "
+        f"{allan_slope:.3f} (white: −1).",
         corrected=(
             "Quantization error is white, uniform on one step with variance \\Delta^2/12 and independent of "
             "the input, when the input is dithered (subtractive uniform dither) or, approximately, when "
@@ -356,7 +367,7 @@ def _check_perpendicular_estimator() -> Verdict:
     )
 
 
-def _check_revolution_average(sizes: range = range(1, 9)) -> Verdict:
+def _check_revolution_average(sizes: range = range(1, 7)) -> Verdict:
     t, i = sp.Symbol("t", integer=True, positive=True), sp.Symbol("i", integer=True, positive=True)
     # φ(τ) = 2πτ/T at the sample times τ = (t − 1)T + iT/N of (6)
     angle = 2 * sp.pi * ((t - 1) * _period + i * _period / N) / _period
@@ -666,6 +677,72 @@ def _check_eq17_block_entries(sizes: range = range(2, 13)) -> Verdict:
     )
 
 
+def _check_averages_correlated(n_value: int = 200) -> Verdict:
+    covariance = cf.RRW_AVERAGE_COVARIANCE
+    a_symbol, b_symbol = sorted(
+        (symbol for symbol in covariance.free_symbols if str(symbol) in "ab"), key=str
+    )
+    first = covariance.subs({a_symbol: 1, b_symbol: 1})
+    second = covariance.subs({a_symbol: 2, b_symbol: 2})
+    cross = covariance.subs({a_symbol: 1, b_symbol: 2})
+    correlation = cross / sp.sqrt(first * second)
+    limit = sp.limit(correlation, N, sp.oo)
+    if limit != sp.Rational(3, 4) or correlation.subs(N, 1) == 0:
+        return Verdict(Status.REFUTED, f"correlation tends to {limit}")
+    value = sp.N(correlation.subs(N, n_value), DIGITS)
+    return Verdict(
+        Status.PROVED,
+        f"Corr = ((N+1)/2)/√(V(V+N)) with V = (N+1)(2N+1)/(6N): {sp.N(correlation.subs(N, 1), 6)} at N = 1, "
+        f"{sp.N(value, 6)} at N = {n_value}, → {limit} as N → ∞ (exact limit): the averages are strongly "
+        "correlated.",
+    )
+
+
+def _check_sequence_variance_length(orders: range = range(2, 11)) -> Verdict:
+    variances = []
+    for order in orders:
+        matrix = gray_matrix(order)
+        diagonal = np.einsum("ij,ij->i", matrix, matrix)  # diag(K Kᵀ)
+        if not np.all(diagonal == diagonal[0]):
+            return Verdict(Status.REFUTED, f"n = {order}: the variances differ within the sequence")
+        variances.append(Fraction(float(diagonal[0])).limit_denominator(64))
+    if len(set(variances)) != len(variances):
+        return Verdict(Status.REFUTED, f"the variance does not change with the length: {variances}")
+    return Verdict(
+        Status.VERIFIED,
+        f"Var R_t = C²·diag(K Kᵀ) is the same for every t but equals {variances[0]}, {variances[1]}, …, "
+        f"{variances[-1]} for lengths 2^{orders.start}, …, 2^{orders.stop - 1}: a function of the length, "
+        "as the paper says (n/4 for length 2^n).",
+    )
+
+
+def _check_flicker_allan_constant(
+    order: float = 0.5, length: int = 2**14, taus: tuple[int, ...] = (16, 32, 64, 128, 256, 512)
+) -> Verdict:
+    values = flicker_allan_variance(order, np.array(taus), length)
+    with mpmath.workdps(DIGITS):
+        # continuous 1/f with one-sided density h/f has Allan variance 2 ln 2 · h; here h = σ_w²/π
+        plateau = 2 * mpmath.log(2) / mpmath.pi
+    deviation = float(np.max(np.abs(values / float(plateau) - 1)))
+    short = flicker_allan_variance(order, np.array([1, 2]), length)
+    other = flicker_allan_variance(order / 2, np.array([taus[0], taus[-1]]), length)
+    if deviation > 0.01:
+        return Verdict(
+            Status.REFUTED,
+            f"d = {order}: Allan variance {values[0]:.4g} … {values[-1]:.4g} over τ = {taus[0]}…{taus[-1]} "
+            "samples is not constant",
+        )
+    return Verdict(
+        Status.VERIFIED,
+        f"Exact expected Allan variance of (3) at d = {order} (length {length}): within "
+        f"{100 * deviation:.2f} % of "
+        f"2 ln 2/π = {mpmath.nstr(plateau, 6)} σ_w² for τ = {taus[0]}…{taus[-1]} samples; not at τ = 1, 2 "
+        f"({short[0]:.4f}, {short[1]:.4f}, the discrete spectrum). At d = {order / 2} it changes by "
+        f"the factor "
+        f"{other[1] / other[0]:.3f} over the same τ range: only d = 1/2 is pure 1/f.",
+    )
+
+
 def _check_period_not_explicit() -> Verdict:
     expressions = {
         "(15)": cf.RRW_AVERAGE_COVARIANCE,
@@ -919,6 +996,12 @@ CLAIMS: list[Claim] = [
         _check_eq17_block_entries,
     ),
     _claim(
+        "secIIIC-averages-correlated",
+        "§III-C, after eq. (15)",
+        "It can be seen that the two (directly averaged) averages are correlated.",
+        _check_averages_correlated,
+    ),
+    _claim(
         "secIIIC-period-not-explicit",
         "§III-C, after eq. (18)",
         "The carouseling period T does not appear explicitly in (15) and (18); at a constant sampling "
@@ -937,6 +1020,20 @@ CLAIMS: list[Claim] = [
         "§IV, eq. (26)",
         "Under the i.i.d. and unit variance assumptions, cov x = [[1, 0], [0, 1]].",
         _check_covariance_identity,
+    ),
+    _claim(
+        "sec4-sequence-variance-depends-on-length",
+        "§IV, before Algorithm 1",
+        "'Sequence' rather than 'stochastic process': the variance of the individual random variables in the "
+        "sequence is a function of the length of the sequence.",
+        _check_sequence_variance_length,
+    ),
+    _claim(
+        "sec4-pure-flicker-allan-constant",
+        "§IV, after eq. (20)",
+        "If y consists of pure 1/f noise, it can be expected that σ_A²(τ) is independent of τ [25], [31], "
+        "[32].",
+        _check_flicker_allan_constant,
     ),
     _claim(
         "secVA-simulation-setup",
