@@ -48,6 +48,8 @@ EXPECTED = {
     "TIM2014-secIIIC-averages-correlated": Status.PROVED,
     "TIM2014-sec4-sequence-variance-depends-on-length": Status.VERIFIED,
     "TIM2014-sec4-pure-flicker-allan-constant": Status.VERIFIED,
+    "TIM2014-secVC-zero-true-rate": Status.NOT_CHECKABLE,
+    "TIM2014-secVC-x-rrw-slope": Status.NOT_CHECKABLE,
 }
 
 
@@ -130,6 +132,21 @@ def test_averages_correlation_by_brute_force():
     evidence = module._check_averages_correlated(n_value=3).evidence
     expected = sp.N(2 / sp.sqrt(sp.Rational(14, 9) * sp.Rational(41, 9)), 6)
     assert f"{expected} at N = 3" in evidence
+
+
+def test_earth_rate_numbers_by_hand():
+    # 7.292115e-5 rad/s · cos 61.5° ≈ 3.48e-5 rad/s; over one hour ≈ 0.1253 rad ≈ 7.18°
+    evidence = module._check_zero_true_rate().evidence
+    horizontal = 7.292115e-5 * np.cos(np.radians(61.5))
+    assert f"{horizontal:.2e}".replace("e-05", "e-5") + " rad/s" in evidence  # mpmath writes e-5
+    assert f"{np.degrees(horizontal * 3600):.3g}°" in evidence
+    # carouselled white bin: (3e-5 + 1e-5)/(2·200) = 1e-7 (rad/s)², σ = 3.16e-4 rad/s
+    assert "σ = 0.000316 rad/s" in evidence
+
+
+def test_x_rrw_crossing_by_hand():
+    # σ_WN²/τ = σ_q² τ/3 at τ = √(3 · 3e-7 / 3e-10) = √3000 s
+    assert f"{np.sqrt(3000):.1f} s" in module._check_x_rrw_slope().evidence
 
 
 # --- the helpers, two ways -----------------------------------------------------------------------

@@ -30,7 +30,7 @@ from carousel_theory.processes import (
     fractional_coefficients_exact,
     rate_random_walk_covariance,
 )
-from carousel_theory.symbols import N, d, k
+from carousel_theory.symbols import N, d, k, var_x, var_y
 from carousel_theory.weights import averaging_weights, carousel_weights
 
 __all__ = ["CLAIMS"]
@@ -824,6 +824,61 @@ def _check_rrw_simulation_setup(realisations: int = 2 * 1000, printed_cases: int
 
 
 # --------------------------------------------------------------------------------------------
+# §V-C: statements about the static recording, with the numbers the printed model implies
+# --------------------------------------------------------------------------------------------
+
+#: Table III of TIM 2014 (x, y): σ_WN² at τ = 1 s in (rad/s)², σ_q² in (rad/s)²/s; §V-C: 100 Hz, N = 200.
+_TABLE_III = {"x": (3e-7, 3e-10), "y": (1e-7, 2e-10)}
+_SAMPLE_RATE = 100.0
+_SAMPLES_PER_REVOLUTION = 200
+
+
+def _table_model(gyro: str, component: str) -> NoiseModel:
+    white, rrw = _TABLE_III[gyro]
+    if component == "white":  # per-sample variance = σ_WN²(τ = 1 s) · f_s
+        return NoiseModel(sample_rate=_SAMPLE_RATE, white_variance=white * _SAMPLE_RATE)
+    return NoiseModel(sample_rate=_SAMPLE_RATE, rrw_variance=rrw / _SAMPLE_RATE)
+
+
+def _check_x_rrw_slope(taus_seconds: tuple[float, ...] = (60.0, 600.0)) -> Verdict:
+    samples = np.array([int(tau * _SAMPLE_RATE) for tau in taus_seconds])
+    white = model_allan_variance(_table_model("x", "white"), samples)
+    rrw = model_allan_variance(_table_model("x", "rrw"), samples)
+    crossing = float(np.sqrt(3 * _TABLE_III["x"][0] / _TABLE_III["x"][1]))
+    ratios = ", ".join(
+        f"{r / w:.3g} at τ = {tau:g} s" for tau, w, r in zip(taus_seconds, white, rrw, strict=True)
+    )
+    return Verdict(
+        Status.NOT_CHECKABLE,
+        "Fig. 6 is not public. With the printed x values the RRW term σ_q²τ/3 overtakes the white term at "
+        f"τ = √(3σ_WN²/σ_q²) = {crossing:.1f} s and dominates it by {ratios}: a curve with these parameters "
+        "would show a clear ascending slope, so the printed x σ_q² can only be an upper bound.",
+    )
+
+
+def _check_zero_true_rate(latitude_degrees: float = 61.5, hours: float = 1.0) -> Verdict:
+    with mpmath.workdps(DIGITS):
+        earth_rate = mpmath.mpf("7.292115e-5")  # rad/s, IERS
+        horizontal = earth_rate * mpmath.cos(mpmath.radians(latitude_degrees))
+        angle_degrees = mpmath.degrees(horizontal * 3600 * mpmath.mpf(hours))
+    white_x = _table_model("x", "white").white_variance
+    white_y = _table_model("y", "white").white_variance
+    bin_variance = cf.WHITE_CAROUSEL_VARIANCE.subs(
+        {N: _SAMPLES_PER_REVOLUTION, var_x: white_x, var_y: white_y}
+    )
+    bin_sigma = float(sp.sqrt(bin_variance))
+    return Verdict(
+        Status.NOT_CHECKABLE,
+        f"The orientation and site are not given. Earth's rate is {mpmath.nstr(earth_rate, 7)} rad/s, not 0: "
+        f"along a horizontal axis at {latitude_degrees}° N (Tampere, assumed) it is up to "
+        f"{mpmath.nstr(horizontal, 3)} rad/s, only "
+        f"{float(horizontal) / bin_sigma:.2f} σ of a carouselled bin (σ = {bin_sigma:.3g} rad/s) but up to "
+        f"{mpmath.nstr(angle_degrees, 3)}° of angle in {hours:g} h, against the 1.5° reported: zero only for "
+        "an axis perpendicular to Earth's axis (e.g. horizontal east–west) or with the Earth rate removed.",
+    )
+
+
+# --------------------------------------------------------------------------------------------
 # Registry
 # --------------------------------------------------------------------------------------------
 
@@ -1034,6 +1089,19 @@ CLAIMS: list[Claim] = [
         "If y consists of pure 1/f noise, it can be expected that σ_A²(τ) is independent of τ [25], [31], "
         "[32].",
         _check_flicker_allan_constant,
+    ),
+    _claim(
+        "secVC-zero-true-rate",
+        "§V-C, ¶1",
+        "During the entire test, the true angular rate to be measured by the sensors was zero.",
+        _check_zero_true_rate,
+    ),
+    _claim(
+        "secVC-x-rrw-slope",
+        "§V-C, ¶1, Fig. 6, Table III",
+        "The x-gyro does not exhibit a clear ascending RRW slope; its RRW was estimated at the same τ as for "
+        "the y-gyro.",
+        _check_x_rrw_slope,
     ),
     _claim(
         "secVA-simulation-setup",
