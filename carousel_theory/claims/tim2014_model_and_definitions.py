@@ -162,7 +162,7 @@ def _check_quantization_white(
         return Verdict(Status.FAILED, f"dithered error moments {moments}")
     # The gyro-standard quantization term (angle quantization Q, NoiseModel.quantization) is the first
     # difference of white angle noise: Cov(e_t, e_{t+1}) = −σ², Var e_t = 2σ², and Allan slope −2.
-    difference = np.diff(np.eye(4, dtype=np.int64), axis=0)  # rows: a_{t+1} − a_t
+    difference = (np.eye(3, 4, k=1) - np.eye(3, 4)).astype(np.int64)  # rows: a_{t+1} − a_t
     difference_covariance = difference @ difference.T
     difference_lag_one = Fraction(int(difference_covariance[0, 1]), int(difference_covariance[0, 0]))
     slope = model_allan_variance(NoiseModel(sample_rate=1.0, quantization=1.0), np.array([4, 8]))
