@@ -355,9 +355,16 @@ def _local_median_replacement(x: np.ndarray, mask: np.ndarray, half_width: int =
     padded = np.pad(np.where(mask, np.nan, x), half_width, mode="edge")
     windows = np.lib.stride_tricks.sliding_window_view(padded, 2 * half_width + 1)
     where = np.flatnonzero(mask)
-    local = np.nanmedian(windows[where], axis=1) if len(where) else np.array([])
-    fallback = float(np.median(x[~mask])) if (~mask).any() else 0.0
-    result[where] = np.where(np.isfinite(local), local, fallback)
+    selected = windows[where]
+    # Inside a long flagged run (a bump) a window holds no unmasked sample: interpolate linearly there.
+    empty = np.all(np.isnan(selected), axis=1)
+    local = np.empty(len(where))
+    if (~empty).any():
+        local[~empty] = np.nanmedian(selected[~empty], axis=1)
+    kept = np.flatnonzero(~mask)
+    if empty.any():
+        local[empty] = np.interp(where[empty], kept, x[kept]) if len(kept) else 0.0
+    result[where] = local
     return result
 
 

@@ -173,3 +173,20 @@ INVALID = [
 def test_invalid_calls(call, error):
     with pytest.raises(error):
         call()
+
+
+@pytest.mark.data
+@pytest.mark.slow
+def test_measured_mpu6050_recording_runs_end_to_end(shared_data):
+    """The bursty MPU6050 recording: resampled (said), temperature testable, a valid result."""
+    from carousel_theory.data import load_recording
+
+    recording = load_recording(
+        shared_data / "mpu6050_static_10min" / "mpu6050_static_10min.npz", irregular="keep"
+    )
+    result = run_loop(recording)
+    assert any("irregular timestamps" in note for note in result.observations)
+    assert any(note.startswith("quantization on wx") for note in result.observations)
+    assert result.effects and all(name in set(CATALOGUE) | {"unexplained"} for name in result.effects)
+    assert np.isfinite(result.error_before) and np.isfinite(result.error_after)
+    json.dumps(result.as_dict())
