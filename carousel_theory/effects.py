@@ -484,34 +484,40 @@ class Steps(Effect):
         at = time[0] + parameters["time"] * (time[-1] - time[0])
         return signal + parameters["size"] * (time >= at)
 
-    def _quick_scan(self, view: ResidualView, axis: str) -> tuple[np.ndarray, float, float]:
-        """(z of a step after every sample, sd of the statistic, information (Σ_Δ⁻¹)_tt) under the fit."""
+    def _quick_scan(self, view: ResidualView, axis: str) -> tuple[np.ndarray, float, float, float]:
+        """(z of a step after every block, sd of the statistic, information (Σ_Δ⁻¹)_tt, degrees of freedom)
+        under the fit; the degrees of freedom (Satterthwaite) carry the uncertainty of the fitted σ_q²,
+        which on short records is large and would otherwise turn random-walk excursions into "steps"."""
         u, middle_weights, information = view.gls_step_scan(axis)
-        sd = math.sqrt(max(view.statistic_variance(axis, middle_weights), 1e-300))
-        return u / sd, sd, information
+        variance, dof = view.statistic_variance_dof(axis, middle_weights)
+        sd = math.sqrt(max(variance, 1e-300))
+        return u / sd, sd, information, dof
 
     def detect(self, view, alpha=DEFAULT_ALPHA):
         n = len(view.time)
         tests = (n // view.gls_block - 1) * len(view.axes)
-        threshold = _threshold_two_sided(alpha, tests)
         best, best_axis, best_at, best_height, axes = 0.0, "", 0, 0.0, []
+        best_log10_p, best_dof = 1.0, math.inf
         for axis in view.axes:
-            z_all, sd, information = self._quick_scan(view, axis)
+            z_all, sd, information, dof = self._quick_scan(view, axis)
             index = int(np.argmax(np.abs(z_all)))
             at = (index + 1) * view.gls_block
             # Under the model fitted with the data as they are (no refit): a refit without the largest
             # increment of the random walk lowers σ_q² enough to make the scan's maximum anticonservative.
             z, height = float(z_all[index]), float(z_all[index] * sd / information)
-            if abs(z) > threshold:
+            log10_p = _log10_two_sided_t(z, tests, dof)
+            if log10_p < math.log10(alpha):
                 axes.append(axis)
-            if abs(z) > abs(best):
+            if log10_p < best_log10_p:
                 best, best_axis, best_at, best_height = z, axis, at, height
+                best_log10_p, best_dof = log10_p, dof
+        threshold = _threshold_two_sided_t(alpha, tests, best_dof)
         return Detection(
             self.name,
             abs(best),
-            "max abs z of a bias step (GLS)",
+            "max abs z of a bias step (GLS, Student t)",
             threshold,
-            _log10_two_sided(best, tests),
+            min(0.0, best_log10_p),
             bool(axes),
             tuple(axes),
             {"axis": best_axis, "time_s": float(view.time[min(best_at, n - 1)]), "height": best_height},
@@ -519,10 +525,11 @@ class Steps(Effect):
 
     def fit(self, view, detection, alpha=DEFAULT_ALPHA):
         n = len(view.time)
-        threshold = _threshold_two_sided(alpha, (n // view.gls_block - 1) * len(view.axes))
+        tests = (n // view.gls_block - 1) * len(view.axes)
         signals, fitted = {}, {}
         for axis in view.axes:
-            z_all, sd, information = self._quick_scan(view, axis)
+            z_all, sd, information, dof = self._quick_scan(view, axis)
+            threshold = _threshold_two_sided_t(alpha, tests, dof)
             statistic = z_all * sd  # u_t
             total = np.zeros(n)
             jumps = []
