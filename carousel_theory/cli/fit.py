@@ -236,8 +236,22 @@ def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argpars
         lines += [
             "",
             f"Parameters held at zero: {'; '.join(bounds)}." if bounds else "No parameter at a bound.",
-            "",
         ]
+        misfits = []
+        for a in axes:
+            fit = fits[a]
+            dof = fit.degrees_of_freedom
+            p_value = float(stats.chi2.sf(fit.chi_square, dof)) if dof else 1.0
+            if p_value < 0.01:
+                factor = math.sqrt(fit.chi_square / dof)
+                misfits.append(f"{a} (p = {p_value:.2g}; scale its standard errors by about {factor:.2g})")
+        if misfits:
+            lines.append(
+                "The model does not explain every τ within the Allan variance's own uncertainty for "
+                + ", ".join(misfits)
+                + ": the standard errors above assume the model and are too small there."
+            )
+        lines.append("")
     if len(files) > 1:
         lines += [
             "## Run-to-run consistency",
