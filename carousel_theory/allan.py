@@ -259,7 +259,7 @@ def _component_filters(
             taps = np.zeros(2 * m + 1)
             taps[[0, m, 2 * m]] = (1.0, -2.0, 1.0)
         else:
-            taps = _second_difference_of_cumulative_psi(float(d), m, length)
+            taps = _second_difference_of_cumulative_psi(0.5 if d is None else float(d), m, length)
         filters.append((variance, taps))
     return filters
 

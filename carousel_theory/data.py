@@ -204,7 +204,8 @@ def recording_from_arrays(
         if sample_rate is None:
             raise ValueError(f"{source}: no time column and no sample_rate; give one of them")
         time_array = np.arange(length, dtype=np.float64) / sample_rate
-        rate, uniform, notes = sample_rate, True, ()
+        rate, uniform = sample_rate, True
+        notes: tuple[str, ...] = ()
     else:
         time_array = _check_column("time", time, source, length)
         rate, uniform, notes = _check_timing(time_array, source, irregular)

@@ -68,7 +68,7 @@ class NoiseModel:
     flicker_variance: float = 0.0
     flicker_d: float = 0.5
     quantization: float = 0.0
-    extra: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
+    extra: dict[Any, Any] = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         check_positive_real("sample_rate", self.sample_rate)
@@ -409,8 +409,9 @@ def fit_noise_model(
     samples = check_finite_array("y", y, min_length=3)
     length = len(samples)
     allan = allan_variance(samples, sample_rate, "octave", estimator=estimator, confidence=confidence)
-    sizes = allan.samples_per_cluster
-    used = np.ones(len(sizes), dtype=bool)
+    sizes = np.asarray(allan.samples_per_cluster)
+    degrees = np.asarray(allan.edf)
+    used: np.ndarray = np.ones(len(sizes), dtype=np.bool_)
     if tau_range is not None:
         if len(tau_range) != 2:
             raise ValueError(f"tau_range={tau_range!r}: must be (low, high) in seconds")
@@ -430,7 +431,7 @@ def fit_noise_model(
     d = 0.5 if flicker_d is None else flicker_d
 
     # Start: weights from the white-noise degrees of freedom of the observed values (diagonal).
-    covariance = np.diag(2.0 * observed**2 / allan.edf[used])
+    covariance = np.diag(2.0 * observed**2 / degrees[used])
     theta = np.zeros(len(components))
     for _ in range(iterations):
         if fit_d:

@@ -179,12 +179,13 @@ def run(args: argparse.Namespace) -> int:
         f"{args.estimator} estimator"
     )
     for name, result in results.items():
+        degrees = np.asarray(result.edf)
         print(f"\n{name}: τ (s), Allan deviation (rad/s), {100 * args.confidence:g} % interval, EDF")
         for i in range(len(result.tau)):
             print(
                 f"  {result.tau[i]:12.6g}  {math.sqrt(result.avar[i]):12.5e}  "
                 f"[{math.sqrt(result.ci_low[i]):11.4e}, {math.sqrt(result.ci_high[i]):11.4e}]  "
-                f"{result.edf[i]:10.4g}"
+                f"{degrees[i]:10.4g}"
             )
     if args.plot:
         print(f"\nwrote {args.plot}")
