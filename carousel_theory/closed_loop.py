@@ -627,10 +627,12 @@ def _carousel_bins(view: _View, N: int, angle: np.ndarray | None) -> dict[str, A
             "time": np.array([]),
             "mode": "measured angles (no complete revolution)",
         }
-    values, variance, centres = [], [], []
+    bin_values: list[float] = []
+    bin_variances: list[float] = []
+    bin_centres: list[float] = []
     for start, stop in zip(starts, stops, strict=True):
         s, c = carousel_weights_from_angles(angle[start:stop])
-        values.append(-float(np.dot(s, x[start:stop])) + float(np.dot(c, y[start:stop])))
+        bin_values.append(-float(np.dot(s, x[start:stop])) + float(np.dot(c, y[start:stop])))
         total = 0.0
         for noise, weights in ((noise_x, s), (noise_y, c)):
             total += noise.long_run_variance * float(np.dot(weights, weights))
@@ -641,12 +643,12 @@ def _carousel_bins(view: _View, N: int, angle: np.ndarray | None) -> dict[str, A
             if noise.flicker_variance:
                 padded = np.concatenate((np.zeros(start), weights))
                 total += noise.flicker_variance * weighted_sum_variance(padded, "flicker", d=noise.flicker_d)
-        variance.append(total)
-        centres.append(0.5 * (view.time[start] + view.time[stop - 1]))
+        bin_variances.append(total)
+        bin_centres.append(0.5 * float(view.time[start] + view.time[stop - 1]))
     return {
-        "values": np.array(values),
-        "variance": np.array(variance),
-        "time": np.array(centres),
+        "values": np.array(bin_values),
+        "variance": np.array(bin_variances),
+        "time": np.array(bin_centres),
         "mode": "measured angles, one bin per revolution",
     }
 
@@ -744,10 +746,10 @@ def _evaluate(view: _View, N: int, angle: np.ndarray | None, alpha: float) -> _E
         }
     tails = {}
     for axis in view.axes:
-        kurtosis, z = _tail_z(view.residuals[axis])
+        kurtosis, tail_z = _tail_z(view.residuals[axis])
         # Only heavy tails count against the model (light tails come from coarse quantization).
-        z_values.append(float(np.clip(max(z, 0.0), 0.0, 38.0)))
-        tails[axis] = {"excess_kurtosis_of_differences": kurtosis, "z": z}
+        z_values.append(min(max(tail_z, 0.0), 38.0))
+        tails[axis] = {"excess_kurtosis_of_differences": kurtosis, "z": tail_z}
     # Trends, steps, spectral lines and spectral slope: every detector of an effect the model lacks
     # (1/f noise, once in the model, is judged by the Allan-variance z-values above).
     detections = {
@@ -758,9 +760,13 @@ def _evaluate(view: _View, N: int, angle: np.ndarray | None, alpha: float) -> _E
     residual_tests = {}
     for name, detection in detections.items():
         if detection.testable:
-            z = _z_from_log10_p(detection.log10_p)
-            z_values.append(z)
-            residual_tests[name] = {"statistic": detection.statistic, "log10_p": detection.log10_p, "z": z}
+            test_z = _z_from_log10_p(detection.log10_p)
+            z_values.append(test_z)
+            residual_tests[name] = {
+                "statistic": detection.statistic,
+                "log10_p": detection.log10_p,
+                "z": test_z,
+            }
     headline = float(np.sqrt(np.mean(np.square(z_values))))
     metrics = {
         "residual_tests": residual_tests,

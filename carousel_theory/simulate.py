@@ -246,7 +246,8 @@ def write_recording(recording: Recording, path: str | Path) -> Path:
         columns["phi"] = recording.angle
     suffix = path.suffix.lower()
     if suffix == ".npz":
-        np.savez(path, fs=np.float64(recording.sample_rate), **columns)
+        # numpy's stub types **kwds as the allow_pickle flag; the keys are array names here.
+        np.savez(path, fs=np.float64(recording.sample_rate), **columns)  # type: ignore[arg-type]
     elif suffix == ".csv":
         # %.17g round-trips float64: reading the file back gives the same numbers bit for bit.
         np.savetxt(
