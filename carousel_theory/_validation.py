@@ -95,7 +95,10 @@ def check_positive_real(name: str, value: Any, allow_zero: bool = False) -> Any:
 
 
 def check_fractional_order(name: str, value: Any, low: Any = 0, high: Any = 1) -> Any:
-    """The degree of fractional integration d, strictly inside (low, high); TIM 2014 eq. (3) uses 0 < d < 1."""
+    """The degree of fractional integration d, strictly inside (low, high).
+
+    TIM 2014 eq. (3) uses 0 < d < 1.
+    """
     result = check_real(name, value)
     if not (low < result < high):
         raise ValueError(f"{name}={value!r}: must satisfy {low} < {name} < {high}")

@@ -73,7 +73,8 @@ def render_markdown(checked: Sequence[CheckedClaim]) -> str:
             claim, verdict = item.claim, item.verdict
             lines.append(
                 f"| `{claim.id}` | {_escape(claim.location)} | {_escape(claim.statement)} | "
-                f"**{verdict.status.value}** | {_escape(verdict.evidence)} | {_escape(verdict.corrected or '')} |"
+                f"**{verdict.status.value}** | {_escape(verdict.evidence)} | "
+                f"{_escape(verdict.corrected or '')} |"
             )
     errata = [item for item in checked if item.verdict.status in (Status.ERRATUM, Status.REFUTED)]
     if errata:
@@ -114,7 +115,9 @@ def summary(checked: Sequence[CheckedClaim]) -> str:
     errata = [item for item in checked if item.verdict.status in (Status.ERRATUM, Status.REFUTED)]
     if errata:
         lines.append("errata and refutations:")
-        lines += [f"  {item.claim.id} ({item.claim.location}): {item.verdict.status.value}" for item in errata]
+        lines += [
+            f"  {item.claim.id} ({item.claim.location}): {item.verdict.status.value}" for item in errata
+        ]
     failed = [item for item in checked if item.verdict.status is Status.FAILED]
     if failed:
         lines.append("FAILED checks:")

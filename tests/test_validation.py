@@ -14,8 +14,12 @@ from carousel_theory import _validation as v
 @pytest.mark.parametrize(
     ("call", "error", "fragment"),
     [
-        pytest.param(lambda: v.check_positive_integer("N", 0), ValueError, "N=0: must be an integer >= 1", id="N=0"),
-        pytest.param(lambda: v.check_positive_integer("N", 2.0), TypeError, "N=2.0: must be an integer", id="N float"),
+        pytest.param(
+            lambda: v.check_positive_integer("N", 0), ValueError, "N=0: must be an integer >= 1", id="N=0"
+        ),
+        pytest.param(
+            lambda: v.check_positive_integer("N", 2.0), TypeError, "N=2.0: must be an integer", id="N float"
+        ),
         pytest.param(lambda: v.check_positive_integer("N", True), TypeError, "N=True", id="N bool"),
         pytest.param(lambda: v.check_fractional_order("d", 1), ValueError, "0 < d < 1", id="d=1"),
         pytest.param(lambda: v.check_fractional_order("d", float("nan")), ValueError, "NaN", id="d nan"),

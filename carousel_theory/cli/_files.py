@@ -22,7 +22,12 @@ def write_or_compare(path: Path, text: str, check: bool) -> bool:
     if current == text:
         return True
     diff = difflib.unified_diff(
-        current.splitlines(), text.splitlines(), f"{path} (committed)", f"{path} (regenerated)", lineterm="", n=1
+        current.splitlines(),
+        text.splitlines(),
+        f"{path} (committed)",
+        f"{path} (regenerated)",
+        lineterm="",
+        n=1,
     )
     print("\n".join(list(diff)[:40]))
     return False

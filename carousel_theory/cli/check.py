@@ -18,7 +18,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Run the check of every claim of both papers and write paper_check.md (for people) "
         "and paper_check.json (for machines) into --out (default: the current directory).",
     )
-    parser.add_argument("--out", type=Path, default=Path("."), help="directory for the two files (default: .)")
+    parser.add_argument(
+        "--out", type=Path, default=Path("."), help="directory for the two files (default: .)"
+    )
     parser.add_argument(
         "--check",
         action="store_true",
@@ -58,5 +60,7 @@ def run(args: argparse.Namespace) -> int:
     if args.check and not (same_md and same_json):
         print(f"{MARKDOWN_NAME}/{JSON_NAME} are out of date: run `carousel-theory check` and commit them")
     else:
-        print(f"wrote {args.out / MARKDOWN_NAME} and {args.out / JSON_NAME}" if not args.check else "up to date")
+        print(
+            f"wrote {args.out / MARKDOWN_NAME} and {args.out / JSON_NAME}" if not args.check else "up to date"
+        )
     return 1 if (failed or regressions or (args.check and not (same_md and same_json))) else 0

@@ -16,8 +16,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="regenerate the derivation documents (derivations/*.md) from SymPy",
         description="Derive every closed form with SymPy and write one markdown document per section.",
     )
-    parser.add_argument("--out", type=Path, default=Path("derivations"), help="directory (default: derivations)")
-    parser.add_argument("--check", action="store_true", help="write nothing; fail if any document would change")
+    parser.add_argument(
+        "--out", type=Path, default=Path("derivations"), help="directory (default: derivations)"
+    )
+    parser.add_argument(
+        "--check", action="store_true", help="write nothing; fail if any document would change"
+    )
     parser.add_argument("--only", metavar="NAME", help="only the document with this name")
     parser.set_defaults(handler=run)
 
@@ -34,7 +38,9 @@ def run(args: argparse.Namespace) -> int:
         same = write_or_compare(args.out / f"{document.name}.md", document.render(), args.check)
         unchanged = unchanged and same
     if args.check:
-        print("derivations up to date" if unchanged else "derivations out of date: run `carousel-theory derive`")
+        print(
+            "derivations up to date" if unchanged else "derivations out of date: run `carousel-theory derive`"
+        )
         return 0 if unchanged else 1
     print(f"wrote {len(documents)} documents to {args.out}")
     return 0
