@@ -3,7 +3,9 @@ working precision of mpmath restored after every test, and the location of the m
 
 from __future__ import annotations
 
+import inspect
 import os
+import re
 from pathlib import Path
 
 import mpmath
@@ -47,3 +49,17 @@ def shared_data() -> Path:
     if not SHARED_DATA.is_dir():
         pytest.skip(f"measured data not found at {SHARED_DATA} (the shared/ folder beside the project)")
     return SHARED_DATA
+
+
+def public_functions(module) -> set[str]:
+    """The names of the functions a module defines itself and does not mark private."""
+    return {
+        name
+        for name, value in inspect.getmembers(module, inspect.isfunction)
+        if value.__module__ == module.__name__ and not name.startswith("_")
+    }
+
+
+def functions_called_in(invalid_calls) -> set[str]:
+    """The names that appear in the source of the calls of an invalid-call table ``(id, call, ...)``."""
+    return {word for case in invalid_calls for word in re.findall(r"\w+", inspect.getsource(case[1]))}
