@@ -1,0 +1,172 @@
+"""SJ 2012 eq. (1), (2), (7)–(9) and §I–§IV statements: each claim reaches the status decided from the
+paper, the exact helpers agree with independent hand or brute-force values, and a wrong statement is
+detected."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from carousel_theory.claim import Status
+from carousel_theory.claims import sj2012_model_and_definitions as module
+from carousel_theory.prediction import calibration_mean_forecast
+from carousel_theory.processes import flicker_covariance
+
+#: Status decided from the paper text (see each claim's statement).
+EXPECTED = {
+    "SJ2012-eq1-measurement-model": Status.PROVED,
+    "SJ2012-eq2-allan-variance": Status.VERIFIED,
+    "SJ2012-sec1-flicker-allan-constant": Status.VERIFIED,
+    "SJ2012-sec1-fig1-temperature-trend": Status.NOT_CHECKABLE,
+    "SJ2012-sec3a-fig1-1000-seconds": Status.NOT_CHECKABLE,
+    "SJ2012-sec3b-white-negative-slope": Status.PROVED,
+    "SJ2012-sec3b-flicker-long-memory": Status.VERIFIED,
+    "SJ2012-sec3b-rrw-positive-slope": Status.PROVED,
+    "SJ2012-sec3b-rrw-markov-future": Status.ERRATUM,
+    "SJ2012-sec4a-kalman-computationally-demanding": Status.VERIFIED,
+    "SJ2012-eq7-increments-not-independent": Status.VERIFIED,
+    "SJ2012-eq7-constant-allan-and-independent-increments": Status.REFUTED,
+    "SJ2012-eq8-eq9-moving-average": Status.VERIFIED,
+    "SJ2012-sec5a-fig1-no-rrw-below-1e5": Status.NOT_CHECKABLE,
+    "SJ2012-sec5a-fig1-rrw-above-4e3": Status.NOT_CHECKABLE,
+}
+
+
+def test_every_claim_has_an_expected_status():
+    assert sorted(claim.id for claim in module.CLAIMS) == sorted(EXPECTED)
+
+
+@pytest.mark.parametrize("claim", module.CLAIMS, ids=lambda claim: claim.id)
+def test_claim_status(claim):
+    verdict = claim.check()
+    assert verdict.status == EXPECTED[claim.id], verdict.evidence
+    assert verdict.evidence
+    if verdict.status in (Status.ERRATUM, Status.REFUTED):
+        assert verdict.corrected
+
+
+def test_evidence_is_deterministic():
+    first = [claim.check().evidence for claim in module.CLAIMS]
+    assert first == [claim.check().evidence for claim in module.CLAIMS]
+
+
+# --- exact helpers against hand values ------------------------------------------------------------
+
+
+def test_allan_variance_eq2_by_hand():
+    # τ = 1: differences 2, −1, 4 → 21/(2·3); τ = 2: bin means 2, 4 → 4/(2·1)
+    assert module.allan_variance_eq2((1, 3, 2, 6), 1) == Fraction(7, 2)
+    assert module.allan_variance_eq2((1, 3, 2, 6), 2) == Fraction(2)
+    # a trailing partial bin is dropped: bins (1, 3), (2, 6), [5]
+    assert module.allan_variance_eq2((1, 3, 2, 6, 5), 2) == Fraction(2)
+
+
+def test_moving_average_eq8_eq9_by_hand():
+    # last sample 6; mean of last two (2 + 6)/2; then the mean of all three for j ≥ k = 3
+    assert module.moving_average_eq8_eq9((1, 2, 6), 5) == [
+        Fraction(6),
+        Fraction(4),
+        Fraction(3),
+        Fraction(3),
+        Fraction(3),
+    ]
+
+
+@pytest.mark.parametrize("samples_per_bin, start", [(1, 0), (2, 0), (1, 3), (2, 1)])
+def test_increments_covariance_against_dense_covariance(samples_per_bin, start):
+    # second way: Δ = Wx with the exact covariance matrix of x from processes.flicker_covariance
+    m = samples_per_bin
+    length = start + 3 * m
+    covariance = [
+        [Fraction(flicker_covariance(s, t, Fraction(1, 2))) for t in range(1, length + 1)]
+        for s in range(1, length + 1)
+    ]
+    rows = [[Fraction(0)] * length for _ in range(2)]
+    for t in range(m):
+        rows[0][start + t] = Fraction(-1, m)
+        rows[0][start + m + t] = Fraction(1, m)
+        rows[1][start + m + t] = Fraction(-1, m)
+        rows[1][start + 2 * m + t] = Fraction(1, m)
+
+    def quadratic(a, b):
+        return sum(a[s] * covariance[s][t] * b[t] for s in range(length) for t in range(length))
+
+    expected = (quadratic(rows[0], rows[0]), quadratic(rows[1], rows[1]), quadratic(rows[0], rows[1]))
+    assert module.increments_covariance_exact(m, start) == expected
+
+
+def test_first_increments_covariance_by_hand():
+    # ψ = 1, 1/2, 3/8: x1 = w1, x2 = w2 + w1/2, x3 = w3 + w2/2 + 3w1/8
+    # Δ1 = w2 − w1/2, Δ2 = w3 − w2/2 − w1/8: Var 5/4, 1 + 1/4 + 1/64 = 81/64, Cov −1/2 + 1/16 = −7/16
+    assert module.increments_covariance_exact(1, 0) == (Fraction(5, 4), Fraction(81, 64), Fraction(-7, 16))
+
+
+# --- a wrong statement is detected -----------------------------------------------------------------
+
+
+def test_eq2_with_a_different_normalisation_is_refuted(monkeypatch):
+    original = module.allan_variance_eq2
+
+    def over_two_n(record, samples_per_bin):  # 1/(2N) instead of 1/(2(N − 1))
+        bins = len(record) // samples_per_bin
+        return original(record, samples_per_bin) * (bins - 1) / bins
+
+    monkeypatch.setattr(module, "allan_variance_eq2", over_two_n)
+    assert module.check_eq2_allan_definition().status == Status.REFUTED
+
+
+def test_calibration_mean_is_not_the_moving_average(monkeypatch):
+    monkeypatch.setattr(module, "moving_average_forecast", calibration_mean_forecast)
+    assert module.check_eq8_eq9_moving_average().status == Status.REFUTED
+
+
+def test_growing_allan_variance_is_not_constant(monkeypatch):
+    monkeypatch.setattr(module, "flicker_allan_variance", lambda d, taus, length: 0.1 * taus.astype(float))
+    assert module.check_flicker_allan_constant().status == Status.REFUTED
+
+
+def test_exactly_constant_allan_variance_is_not_reported_as_asymptotic(monkeypatch):
+    limit = 2 * np.log(2) / np.pi
+    monkeypatch.setattr(module, "flicker_allan_variance", lambda d, taus, length: np.full(len(taus), limit))
+    assert module.check_flicker_allan_constant().status == Status.REFUTED
+
+
+def test_wrong_white_slope_is_refuted(monkeypatch):
+    m = sp.Symbol("m", integer=True, positive=True)
+    monkeypatch.setattr(module, "WHITE_ALLAN_VARIANCE", sp.Symbol("sigma_WN^2", positive=True) / m**2)
+    assert module.check_white_negative_slope().status == Status.REFUTED
+
+
+def test_falling_rrw_allan_variance_is_refuted(monkeypatch):
+    m = sp.Symbol("m", integer=True, positive=True)
+    monkeypatch.setattr(module, "RRW_ALLAN_VARIANCE", sp.Symbol("sigma_q^2", positive=True) / m)
+    assert module.check_rrw_positive_slope().status == Status.REFUTED
+
+
+def test_constant_random_walk_allan_variance_would_not_refute_eq7(monkeypatch):
+    # if a random walk had constant Allan variance the two assumptions would be compatible
+    m = sp.Symbol("m", integer=True, positive=True)
+    constant = sp.Symbol("sigma_q^2", positive=True) / 2 + 0 * m
+    monkeypatch.setattr(module, "RRW_ALLAN_VARIANCE", constant)
+    assert module.check_eq7_assumptions_compatible().status != Status.REFUTED
+
+
+def test_markov_correlations_are_not_long_memory(monkeypatch):
+    monkeypatch.setattr(module, "flicker_covariance", lambda s, t, d: Fraction(4, 5) ** abs(s - t))
+    assert module.check_flicker_long_memory().status == Status.REFUTED
+
+
+def test_uncorrelated_increments_are_detected(monkeypatch):
+    monkeypatch.setattr(module, "_increment_correlation", lambda samples_per_bin, start: 0.0)
+    assert module.check_eq7_increments_dependent().status == Status.FAILED
+
+
+def test_a_wrong_fast_forecast_is_detected(monkeypatch):
+    def calibration_mean(data, horizon):
+        return type("Forecast", (), {"mean": calibration_mean_forecast(data, horizon)})()
+
+    monkeypatch.setattr(module, "fast_kalman_forecast", calibration_mean)
+    assert module.check_kalman_cost().status == Status.FAILED
