@@ -32,6 +32,9 @@ EXPECTED = {
     "SJ2012-eq8-eq9-moving-average": Status.VERIFIED,
     "SJ2012-sec5a-fig1-no-rrw-below-1e5": Status.NOT_CHECKABLE,
     "SJ2012-sec5a-fig1-rrw-above-4e3": Status.NOT_CHECKABLE,
+    "SJ2012-sec1-constant-bias-linear-angle-error": Status.PROVED,
+    "SJ2012-sec1-bias-white-calibrated-by-long-record": Status.VERIFIED,
+    "SJ2012-sec3b-optimal-averaging-time": Status.PROVED,
 }
 
 
@@ -170,3 +173,23 @@ def test_a_wrong_fast_forecast_is_detected(monkeypatch):
 
     monkeypatch.setattr(module, "fast_kalman_forecast", calibration_mean)
     assert module.check_kalman_cost().status == Status.FAILED
+
+
+def test_vanishing_flicker_prediction_error_is_refuted(monkeypatch):
+    monkeypatch.setattr(
+        module, "_prediction_error_variance", lambda process, calibration, lag: 1.0 / calibration
+    )
+    assert module.check_bias_white_calibration().status == Status.REFUTED
+
+
+def test_prediction_error_variance_against_white_noise_by_hand():
+    # white: Var(x_{n+k} − mean) = 1 + 1/n exactly
+    assert module._prediction_error_variance("white", 4, 3) == pytest.approx(1.25, abs=1e-15)
+    # rrw started at t = 1, n = 1, lag 1: Var(x_2 − x_1) = 1
+    assert module._prediction_error_variance("rrw", 1, 1) == pytest.approx(1.0, abs=1e-15)
+
+
+def test_no_minimum_without_rrw_is_refuted(monkeypatch):
+    m = sp.Symbol("m", integer=True, positive=True)
+    monkeypatch.setattr(module, "RRW_ALLAN_VARIANCE", sp.Symbol("sigma_q^2", positive=True) / m)
+    assert module.check_optimal_averaging_time().status == Status.REFUTED

@@ -29,7 +29,7 @@ from carousel_theory.claims.tim2014_model_and_definitions import _check_rrw_futu
 from carousel_theory.fast_prediction import fast_kalman_forecast
 from carousel_theory.prediction import kalman_forecast, moving_average_forecast
 from carousel_theory.processes import flicker_covariance, fractional_coefficients_exact
-from carousel_theory.propagation import weighted_sums_covariance
+from carousel_theory.propagation import weighted_sum_variance, weighted_sums_covariance
 
 #: Small integer record for the exact Allan-variance and moving-average examples.
 EXAMPLE_RECORD = (3, -1, 4, 1, -5, 9, 2, -6, 5, 3, -5, 8)
@@ -306,6 +306,68 @@ def check_kalman_cost(calibration: int = 1000, horizon: int = 1000) -> Verdict:
     return Verdict(Status.FAILED, f"literal and fast Kalman forecasts differ by {difference:.3g}")
 
 
+# --- §I–§III: bias, white noise and the optimal averaging time ------------------------------------
+
+
+def check_bias_integrates_linearly() -> Verdict:
+    bias, time, s = sp.symbols("b t s", positive=True)
+    angle = sp.integrate(bias, (s, 0, time))
+    samples = sp.Symbol("k", integer=True, positive=True)
+    discrete = sp.summation(bias, (sp.Symbol("i", integer=True, positive=True), 1, samples))
+    if sp.simplify(angle - bias * time) == 0 and sp.simplify(discrete - bias * samples) == 0:
+        return Verdict(
+            Status.PROVED,
+            "∫_0^t b ds = b·t (and Σ_{i≤k} b = k·b in discrete time): a constant rate bias gives an angle "
+            "error growing linearly in time.",
+        )
+    return Verdict(Status.REFUTED, f"integral {angle}, sum {discrete}")
+
+
+def _prediction_error_variance(process: str, calibration: int, lag: int) -> float:
+    """Var(x_{n+lag} − mean(x_1 … x_n)) for a process of TIM 2014 §II, unit driving variance."""
+    weights = np.zeros(calibration + lag)
+    weights[:calibration] = -1.0 / calibration
+    weights[-1] = 1.0
+    return weighted_sum_variance(weights, process, 0.5 if process == "flicker" else None)
+
+
+def check_bias_white_calibration() -> Verdict:
+    sizes = (10, 100, 1000)
+    # Bias + white: the calibration mean misses b by the mean of the white samples, Var σ²/n → 0.
+    white = [weighted_sum_variance(np.full(n, 1.0 / n), "white") for n in sizes]
+    # 1/f (d = 1/2): the error of the calibration mean as a prediction n samples later does not vanish.
+    flicker = [_prediction_error_variance("flicker", n, n) for n in sizes]
+    exact_white = all(abs(value - 1.0 / n) < 1e-15 for value, n in zip(white, sizes, strict=True))
+    if exact_white and min(flicker) > 1.0 and flicker[-1] > flicker[0]:
+        return Verdict(
+            Status.VERIFIED,
+            "Bias + white noise (σ² = 1): the calibration mean's error variance is 1/n = "
+            + ", ".join(f"{value:.3g}" for value in white)
+            + f" for n = {', '.join(map(str, sizes))}, → 0. With 1/f noise (d = 1/2, σ_w² = 1) the variance "
+            "of x_{2n} − mean(x_1 … x_n) is "
+            + ", ".join(f"{value:.4f}" for value in flicker)
+            + ": it grows with n instead of vanishing (the nonstationarity of §I–§II).",
+        )
+    return Verdict(Status.REFUTED, f"white {white}, flicker {flicker}")
+
+
+def check_optimal_averaging_time() -> Verdict:
+    m = sp.Symbol("m", positive=True)
+    white_variance = sp.Symbol("sigma_WN^2", positive=True)
+    rrw_variance = sp.Symbol("sigma_q^2", positive=True)
+    total = (WHITE_ALLAN_VARIANCE + RRW_ALLAN_VARIANCE).subs(sp.Symbol("m", integer=True, positive=True), m)
+    stationary = sp.solve(sp.diff(total, m), m)
+    expected = sp.sqrt((6 * white_variance + rrw_variance) / (2 * rrw_variance))
+    second = sp.simplify(sp.diff(total, m, 2).subs(m, expected))
+    if len(stationary) == 1 and sp.simplify(stationary[0] - expected) == 0 and second.is_positive:
+        return Verdict(
+            Status.PROVED,
+            "White + RRW Allan variance σ²/m + σ_q²(2m²+1)/(6m) falls (slope −1) then rises (slope +1); its "
+            "only stationary point m* = √((6σ² + σ_q²)/(2σ_q²)) is a minimum (second derivative > 0).",
+        )
+    return Verdict(Status.REFUTED, f"stationary points {stationary}")
+
+
 # --- Fig. 1 readings ------------------------------------------------------------------------------
 
 
@@ -424,5 +486,25 @@ CLAIMS: list[Claim] = [
         "The gyro without temperature conditioning: Allan variance increases above approx. 4·10^3 s because "
         "of RRW.",
         _not_checkable("4·10^3 s"),
+    ),
+    _claim(
+        "sec1-constant-bias-linear-angle-error",
+        "§I",
+        "Any constant bias error in the angular rate is integrated into a linearly increasing angle error.",
+        check_bias_integrates_linearly,
+    ),
+    _claim(
+        "sec1-bias-white-calibrated-by-long-record",
+        "§I, §II",
+        "If the gyro error were a constant bias and white noise only, a long record with known input would "
+        "calibrate the bias out; the nonstationary 1/f component causes problems with plain averaging.",
+        check_bias_white_calibration,
+    ),
+    _claim(
+        "sec3b-optimal-averaging-time",
+        "§III-B",
+        "White noise causes imprecision at short and RRW at long averaging times, so the optimal averaging "
+        "time is found between the two.",
+        check_optimal_averaging_time,
     ),
 ]
