@@ -35,6 +35,7 @@ EXPECTED = {
     "SJ2012-sec1-constant-bias-linear-angle-error": Status.PROVED,
     "SJ2012-sec1-bias-white-calibrated-by-long-record": Status.VERIFIED,
     "SJ2012-sec3b-optimal-averaging-time": Status.PROVED,
+    "SJ2012-sec3b-bias-instability-measures-flicker": Status.VERIFIED,
 }
 
 
@@ -193,3 +194,13 @@ def test_no_minimum_without_rrw_is_refuted(monkeypatch):
     m = sp.Symbol("m", integer=True, positive=True)
     monkeypatch.setattr(module, "RRW_ALLAN_VARIANCE", sp.Symbol("sigma_q^2", positive=True) / m)
     assert module.check_optimal_averaging_time().status == Status.REFUTED
+
+
+def test_minimum_set_by_white_noise_is_refuted(monkeypatch):
+    # an Allan variance whose minimum follows the white level, not σ_w², must not pass
+    monkeypatch.setattr(
+        module,
+        "model_allan_variance",
+        lambda model, taus, length: np.full(len(taus), model.white_variance),
+    )
+    assert module.check_bias_instability_measures_flicker().status == Status.REFUTED
