@@ -433,8 +433,9 @@ def _claims() -> list[Claim]:
             "SJ2012-table1-simulated-unit-driving-noise",
             "SJ2012",
             "Table I, simulated; §V-B",
-            "The simulated data are half-integrated (d = 1/2) Gaussian white noise (unit variance implied), "
-            "1000 runs of 1000 + 1000 samples.",
+            "The simulated data are half-integrated (d = 1/2) Gaussian white noise, 1000 runs of 1000 + 1000 "
+            "samples. The driving-noise variance is not stated; this claim tests the natural reading, unit "
+            "variance, against the simulated columns of Table I.",
             check_unit_driving_noise,
         ),
         Claim(
