@@ -134,7 +134,11 @@ def _check_timing(time: np.ndarray, source: str, irregular: str) -> tuple[float,
             f"more than {UNIFORM_TOLERANCE:g} relative; the first is t[{i + 1}]-t[{i}]={steps[i]:.6g} s"
         )
     if notes and irregular == "refuse":
-        raise ValueError(f"{source}: {notes[0]} (pass irregular='keep' to keep the timestamps as they are)")
+        raise ValueError(
+            f"{source}: {notes[0]} (uniform sampling is required here; in Python, "
+            "load_recording(..., irregular='keep') keeps the timestamps for analyses that resample them, "
+            "and `carousel-theory loop` averages such recordings onto a uniform grid)"
+        )
     if notes:
         # The nominal rate of irregular data is the mean rate, not the median: it keeps duration right.
         return (len(time) - 1) / float(time[-1] - time[0]), False, tuple(notes)

@@ -20,3 +20,17 @@ def test_unknown_command_exits_with_usage_error(capsys):
         main(["no-such-command"])
     assert excinfo.value.code == 2
     assert "invalid choice" in capsys.readouterr().err
+
+
+def test_missing_matplotlib_is_a_clean_error(monkeypatch, capsys):
+    import carousel_theory.cli as cli
+
+    def handler(args):
+        raise ModuleNotFoundError("No module named 'matplotlib'", name="matplotlib")
+
+    parser = build_parser()
+    monkeypatch.setattr(cli, "build_parser", lambda: parser)
+    check_parser = next(a for a in parser._actions if a.dest == "command").choices["check"]
+    check_parser.set_defaults(handler=handler)
+    assert main(["check"]) == 2
+    assert "carousel-theory[plots]" in capsys.readouterr().err

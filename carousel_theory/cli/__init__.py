@@ -35,6 +35,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (ValueError, TypeError, FileNotFoundError, IsADirectoryError, PermissionError) as error:
         print(f"carousel-theory {args.command}: error: {error}", file=sys.stderr)
         return 2
+    except ModuleNotFoundError as error:
+        if error.name != "matplotlib":
+            raise
+        print(
+            f"carousel-theory {args.command}: error: plotting needs matplotlib: "
+            "python -m pip install 'carousel-theory[plots]'",
+            file=sys.stderr,
+        )
+        return 2
 
 
 if __name__ == "__main__":  # pragma: no cover
