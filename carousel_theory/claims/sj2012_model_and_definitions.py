@@ -115,11 +115,10 @@ def increments_covariance_exact(samples_per_bin: int, start: int) -> tuple[Fract
         # coefficient of driving noise w_i in Σ_t W_t x_t is Σ_{t ≥ i} W_t ψ_{t−i}
         rows.append([sum(weights[t] * psi[t - i] for t in range(i, length)) for i in range(length)])
     first, second = rows
-    zero = Fraction(0)
     return (
-        sum((a * a for a in first), zero),
-        sum((b * b for b in second), zero),
-        sum((a * b for a, b in zip(first, second, strict=True)), zero),
+        Fraction(sum(a * a for a in first)),
+        Fraction(sum(b * b for b in second)),
+        Fraction(sum(a * b for a, b in zip(first, second, strict=True))),
     )
 
 
