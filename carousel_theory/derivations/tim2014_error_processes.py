@@ -87,9 +87,7 @@ def _rate_random_walk() -> list[str]:
     assert sp.simplify(covariance - sigma_q**2 * _s) == 0
     out.append("**Step 2.1.** SymPy `summation` of the surviving diagonal terms, s ≤ t:\n")
     out.append(_display(sp.Eq(sp.Sum(sigma_q**2, (_i, 1, _s)), covariance)))
-    out.append(
-        "so $\\operatorname{Cov}(r_s, r_t) = \\sigma_q^2 \\min(s, t)$ (by symmetry for s > t).\n"
-    )
+    out.append("so $\\operatorname{Cov}(r_s, r_t) = \\sigma_q^2 \\min(s, t)$ (by symmetry for s > t).\n")
     size = 5
     cumulative = sp.Matrix(size, size, lambda row, column: 1 if column <= row else 0)
     product = cumulative * cumulative.T
@@ -126,9 +124,7 @@ def _coefficients() -> list[str]:
     assert sp.simplify(ratio - (_j - 1 + d) / _j) == 0
     psi_zero = sp.gammasimp(_psi(sp.Integer(0)))
     assert psi_zero == 1
-    out.append(
-        "**Step 3.1 (recursion).** SymPy `gammasimp` of the ratio of consecutive coefficients:\n"
-    )
+    out.append("**Step 3.1 (recursion).** SymPy `gammasimp` of the ratio of consecutive coefficients:\n")
     out.append(_display(sp.Eq(sp.Symbol("psi_j") / sp.Symbol(r"\psi_{j-1}"), ratio)))
     out.append(
         f"and $\\psi_0 = {sp.latex(psi_zero)}$. So $\\psi_j = \\psi_{{j-1}}(j-1+d)/j$: the recursion "
@@ -196,10 +192,7 @@ def _flicker_covariance() -> list[str]:
     for t, value in enumerate(coefficients, start=1):
         total += value * value
         assert flicker_covariance(t, t, half, Fraction(1)) == total
-        rows.append(
-            f"| {t} | ${_fraction_latex(value)}$ | ${_fraction_latex(total)}$ | "
-            f"{float(total):.6f} |"
-        )
+        rows.append(f"| {t} | ${_fraction_latex(value)}$ | ${_fraction_latex(total)}$ | {float(total):.6f} |")
     out.append("\n".join(rows) + "\n")
     return out
 
