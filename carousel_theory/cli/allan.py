@@ -12,31 +12,15 @@ from typing import Any
 import numpy as np
 
 from carousel_theory.allan import ESTIMATORS, NOISE_TYPES, AllanResult, allan_variance
+from carousel_theory.cli._recording_options import add_recording_options
 from carousel_theory.data import Recording, load_recording
-
-
-def _mapping(text: str) -> tuple[str, str]:
-    ours, equals, theirs = text.partition("=")
-    if not equals or not ours.strip() or not theirs.strip():
-        raise argparse.ArgumentTypeError(f"{text!r}: must be OURS=THEIRS, e.g. wx=gyro_x or time=t_s")
-    return ours.strip(), theirs.strip()
 
 
 def add_recording_arguments(parser: argparse.ArgumentParser) -> None:
     """Options shared by ``allan`` and ``fit`` for reading a recording."""
-    parser.add_argument(
-        "--column",
-        action="append",
-        type=_mapping,
-        default=[],
-        metavar="OURS=THEIRS",
-        help="map a column of the file: time=..., wx=..., wy=... (repeatable; default: t/time and w*/gyro*)",
-    )
-    parser.add_argument(
-        "--units", default="rad/s", choices=("rad/s", "deg/s", "deg/h"), help="units of the rates"
-    )
-    parser.add_argument(
-        "--sample-rate", type=float, help="samples per second when the file has no time column"
+    add_recording_options(
+        parser,
+        "map a column of the file: time=..., wx=..., wy=... (repeatable; default: t/time and w*/gyro*)",
     )
     parser.add_argument(
         "--estimator",

@@ -6,15 +6,9 @@ import argparse
 import json
 from pathlib import Path
 
+from carousel_theory.cli._recording_options import add_recording_options
 from carousel_theory.closed_loop import run_loop, write_report
 from carousel_theory.data import load_recording
-
-
-def _mapping(text: str) -> tuple[str, str]:
-    ours, equals, theirs = text.partition("=")
-    if not equals or not ours.strip() or not theirs.strip():
-        raise argparse.ArgumentTypeError(f"{text!r}: must be OURS=THEIRS, e.g. wx=gyro_x or temp=T_degC")
-    return ours.strip(), theirs.strip()
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -43,21 +37,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--report", type=Path, metavar="DIR", help="write plots and summary.md into this directory"
     )
-    parser.add_argument(
-        "--column",
-        action="append",
-        type=_mapping,
-        default=[],
-        metavar="OURS=THEIRS",
-        help="map a column: time=..., wx=..., wy=..., temperature=..., angle=... (repeatable)",
+    add_recording_options(
+        parser, "map a column: time=..., wx=..., wy=..., temperature=..., angle=... (repeatable)"
     )
     parser.add_argument("--axes", metavar="A[,B]", help="the gyro axes to analyse (default wx,wy)")
-    parser.add_argument(
-        "--units", default="rad/s", choices=("rad/s", "deg/s", "deg/h"), help="units of the rates"
-    )
-    parser.add_argument(
-        "--sample-rate", type=float, help="samples per second when the file has no time column"
-    )
     parser.add_argument(
         "--alpha", type=float, default=0.01, help="false-alarm rate of each test (default 0.01)"
     )

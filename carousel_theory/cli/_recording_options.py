@@ -1,0 +1,28 @@
+"""Command-line options for reading a recording, shared by the commands that take DATA."""
+
+from __future__ import annotations
+
+import argparse
+
+from carousel_theory.units import RATE_UNITS
+
+__all__ = ["add_recording_options", "column_mapping"]
+
+
+def column_mapping(text: str) -> tuple[str, str]:
+    """Parse one ``--column OURS=THEIRS`` value."""
+    ours, equals, theirs = text.partition("=")
+    if not equals or not ours.strip() or not theirs.strip():
+        raise argparse.ArgumentTypeError(f"{text!r}: must be OURS=THEIRS, e.g. wx=gyro_x or time=t_s")
+    return ours.strip(), theirs.strip()
+
+
+def add_recording_options(parser: argparse.ArgumentParser, column_help: str) -> None:
+    """``--column``, ``--units`` and ``--sample-rate``."""
+    parser.add_argument(
+        "--column", action="append", type=column_mapping, default=[], metavar="OURS=THEIRS", help=column_help
+    )
+    parser.add_argument("--units", default="rad/s", choices=tuple(RATE_UNITS), help="units of the rates")
+    parser.add_argument(
+        "--sample-rate", type=float, help="samples per second when the file has no time column"
+    )
