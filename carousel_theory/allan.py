@@ -35,6 +35,7 @@ import numpy as np
 import sympy as sp
 from scipy import stats
 
+from carousel_theory import symbols
 from carousel_theory._validation import (
     check_finite_array,
     check_fractional_order,
@@ -66,12 +67,13 @@ __all__ = [
 ESTIMATORS = ("overlapping", "non-overlapping")
 NOISE_TYPES = ("white", "rrw", "flicker", "quantization")
 
-# Symbols of the closed forms: m samples per cluster, per-sample variances, sample interval.
-_m = sp.Symbol("m", integer=True, positive=True)
-_white_variance = sp.Symbol("sigma_WN^2", positive=True)
-_rrw_variance = sp.Symbol("sigma_q^2", positive=True)
-_quantization = sp.Symbol("Q", positive=True)
-_sample_interval = sp.Symbol("Delta_t", positive=True)
+# Symbols of the closed forms (carousel_theory.symbols): m samples per cluster, per-sample variances,
+# sample interval.
+_m = symbols.cluster_size
+_white_variance = symbols.white_sample_variance
+_rrw_variance = symbols.rrw_increment_variance
+_quantization = symbols.quantization_step
+_sample_interval = symbols.sample_interval
 
 #: Exact Allan variance of discrete white noise of per-sample variance σ_WN², m samples per cluster.
 WHITE_ALLAN_VARIANCE: sp.Expr = _white_variance / _m

@@ -14,6 +14,7 @@ __all__ = [
     "a",
     "alpha",
     "b",
+    "cluster_size",
     "d",
     "h",
     "i",
@@ -21,13 +22,17 @@ __all__ = [
     "k",
     "m",
     "p",
+    "quantization_step",
     "rho",
+    "rrw_increment_variance",
+    "sample_interval",
     "sigma_q",
     "sigma_w",
     "theta",
     "u",
     "var_x",
     "var_y",
+    "white_sample_variance",
     "x",
     "y",
 ]
@@ -64,3 +69,11 @@ x = sp.Symbol("x", real=True)
 y = sp.Symbol("y", real=True)
 #: h = 1/N, the expansion variable of the large-N series.
 h = sp.Symbol("h", positive=True)
+#: Allan variance models (:mod:`carousel_theory.allan`): m samples per cluster (τ = mΔt), the per-sample
+#: white variance σ_WN², the per-sample RRW increment variance σ_q², the quantization step Q, the sample
+#: interval Δt.
+cluster_size = sp.Symbol("m", integer=True, positive=True)
+white_sample_variance = sp.Symbol("sigma_WN^2", positive=True)
+rrw_increment_variance = sp.Symbol("sigma_q^2", positive=True)
+quantization_step = sp.Symbol("Q", positive=True)
+sample_interval = sp.Symbol("Delta_t", positive=True)

@@ -18,6 +18,7 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
+from carousel_theory import symbols
 from carousel_theory.allan import (
     RRW_ALLAN_VARIANCE,
     WHITE_ALLAN_VARIANCE,
@@ -150,11 +151,10 @@ def check_eq7_increments_dependent() -> Verdict:
 
 def check_eq7_assumptions_compatible() -> Verdict:
     beta = sp.Symbol("beta", positive=True)
-    m = sp.Symbol("m", integer=True, positive=True)
+    m = symbols.cluster_size
     # Independent increments of ȳ(1) = y with variance 2β (eq. (7) at τ = 1) make y a rate random walk
     # with σ_q² = 2β; its Allan variance is RRW_ALLAN_VARIANCE.
-    # (SymPy symbols with equal names and assumptions are the same symbol as those of allan.py)
-    rrw = RRW_ALLAN_VARIANCE.subs(sp.Symbol("sigma_q^2", positive=True), 2 * beta)
+    rrw = RRW_ALLAN_VARIANCE.subs(symbols.rrw_increment_variance, 2 * beta)
     values = [sp.simplify(rrw.subs(m, value) / beta) for value in (1, 2, 4)]
     if values[0] == 1 and values[1] != 1:
         return Verdict(
@@ -201,7 +201,7 @@ def check_flicker_allan_constant() -> Verdict:
 
 
 def check_white_negative_slope() -> Verdict:
-    m = sp.Symbol("m", integer=True, positive=True)
+    m = symbols.cluster_size
     slope = sp.simplify(m * sp.diff(sp.log(WHITE_ALLAN_VARIANCE), m))
     if slope == -1:
         return Verdict(
@@ -213,7 +213,7 @@ def check_white_negative_slope() -> Verdict:
 
 
 def check_rrw_positive_slope() -> Verdict:
-    m = sp.Symbol("m", integer=True, positive=True)
+    m = symbols.cluster_size
     slope = sp.simplify(m * sp.diff(sp.log(RRW_ALLAN_VARIANCE), m))
     limit = sp.limit(slope, m, sp.oo)
     at_one = slope.subs(m, 1)
@@ -354,10 +354,10 @@ def check_bias_white_calibration() -> Verdict:
 
 
 def check_optimal_averaging_time() -> Verdict:
-    m = sp.Symbol("m", positive=True)
-    white_variance = sp.Symbol("sigma_WN^2", positive=True)
-    rrw_variance = sp.Symbol("sigma_q^2", positive=True)
-    total = (WHITE_ALLAN_VARIANCE + RRW_ALLAN_VARIANCE).subs(sp.Symbol("m", integer=True, positive=True), m)
+    m = sp.Symbol("m", positive=True)  # the cluster size made continuous, to differentiate
+    white_variance = symbols.white_sample_variance
+    rrw_variance = symbols.rrw_increment_variance
+    total = (WHITE_ALLAN_VARIANCE + RRW_ALLAN_VARIANCE).subs(symbols.cluster_size, m)
     stationary = sp.solve(sp.diff(total, m), m)
     expected = sp.sqrt((6 * white_variance + rrw_variance) / (2 * rrw_variance))
     second = sp.simplify(sp.diff(total, m, 2).subs(m, expected))

@@ -8,16 +8,16 @@ from fractions import Fraction
 
 import sympy as sp
 
-from carousel_theory import allan
+from carousel_theory import allan, symbols
 from carousel_theory.derivations import Document
 
-_m = sp.Symbol("m", integer=True, positive=True)
+_m = symbols.cluster_size
 _i = sp.Symbol("i", integer=True, positive=True)
 _K = sp.Symbol("K", integer=True, positive=True)
-_white = sp.Symbol("sigma_WN^2", positive=True)
-_rrw = sp.Symbol("sigma_q^2", positive=True)
-_Q = sp.Symbol("Q", positive=True)
-_dt = sp.Symbol("Delta_t", positive=True)
+_white = symbols.white_sample_variance
+_rrw = symbols.rrw_increment_variance
+_Q = symbols.quantization_step
+_dt = symbols.sample_interval
 _tau = sp.Symbol("tau", positive=True)
 _N = sp.Symbol("N", positive=True)
 _Kc = sp.Symbol("K", positive=True)  # continuous RRW density (not the count _K)
