@@ -346,16 +346,19 @@ def _generalized_least_squares(
 
 
 def _bias_variance(model: NoiseModel, length: int) -> float:
-    """Var(ȳ) of the record mean under ``model`` (bias excluded): white σ²/n, RRW σ_q²(n+1)(2n+1)/(6n),
-    quantization 2 f_s² Q²/n², 1/f σ_w² Σ_i Ψ_{n−i}²/n²."""
-    from carousel_theory.processes import fractional_coefficients
+    """Var(ȳ) of the record mean under ``model`` (bias excluded): the record is one averaged bin of
+    N = length samples, so white and RRW come from the registry (``white_average_var``,
+    ``rrw_average_var`` at k = 1), 1/f from :func:`carousel_theory.propagation.flicker_averaged_bin_variance`,
+    and quantization (a white angle error differenced into the rate) adds 2 f_s² Q²/n²."""
+    from carousel_theory.formulas import formula
+    from carousel_theory.propagation import flicker_averaged_bin_variance
 
     n = float(length)
-    variance = model.white_variance / n + model.rrw_variance * (n + 1) * (2 * n + 1) / (6 * n)
+    variance = model.white_variance * float(formula("white_average_var").numeric(N=length))
+    variance += model.rrw_variance * float(formula("rrw_average_var").numeric(N=length, k=1))
     variance += 2.0 * (model.sample_rate * model.quantization) ** 2 / n**2
     if model.flicker_variance:
-        cumulative = np.cumsum(fractional_coefficients(model.flicker_d, length))
-        variance += model.flicker_variance * float(np.dot(cumulative, cumulative)) / n**2
+        variance += model.flicker_variance * flicker_averaged_bin_variance(model.flicker_d, length, 1)
     return variance
 
 
