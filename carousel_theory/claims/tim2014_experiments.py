@@ -829,7 +829,8 @@ CLAIMS: list[Claim] = [
         "TIM2014-secVC-x-larger-variations",
         PAPER,
         "§V-C, ¶1",
-        "The x-gyro exhibited larger variations than the y-gyro.",
+        "The x-gyro exhibited larger variations than the y-gyro (Fig. 6, lost; decided here against the "
+        "paper's own Table III, estimated from Fig. 6 — the recordings are not public).",
         _check_x_larger_variations,
     ),
     Claim(
@@ -905,7 +906,8 @@ CLAIMS: list[Claim] = [
         PAPER,
         "§V-C, ¶3",
         "The errors shown in Fig. 8 include the initial warm-up phase where the gyro biases were not yet "
-        "stabilized.",
+        "stabilized (the figure and data are not public; decided here: the modelled white noise and RRW of "
+        "Table III cannot produce the 600° of Fig. 8 without an unmodelled bias).",
         _check_averaged_angle_needs_bias,
     ),
     Claim(
