@@ -41,7 +41,7 @@ DEFAULT_BUDGET_BYTES = 4 * 1024**3
 # _STEP_BASE + _STEP_PER_DIGIT · D^1.6 at D working digits; a closed form at D digits about
 # _CLOSED_FORM · D^2.5 (SymPy evalf of csc(π/N) at 9000 digits: 0.12 s, at 20000: 1.1 s); the
 # float64 FFT path about _FFT_PER_SAMPLE per sample of length k·N, with _FFT_BYTES_PER_SAMPLE of
-# memory; the exact rational sum about _EXACT · (kN)^2.3 for d = 1/2 (kN = 2000: 0.27 s).
+# memory; the exact rational sum about _EXACT · (kN)^2.5 for d = 1/2 (kN = 3000: 1.1 s, 6000: 6.4 s).
 _STEP_BASE = 3.0e-5
 _STEP_PER_DIGIT = 2.0e-9
 _STEP_BYTES_PER_DIGIT = 0.5
@@ -50,8 +50,8 @@ _CLOSED_FORM = 2.0e-11
 _CLOSED_FORM_BASE = 5.0e-3
 _FFT_PER_SAMPLE = 4.5e-7
 _FFT_BYTES_PER_SAMPLE = 64.0
-_EXACT = 6.9e-9
-_EXACT_EXPONENT = 2.3
+_EXACT = 2.3e-9
+_EXACT_EXPONENT = 2.5
 
 
 @dataclass(frozen=True)
@@ -154,7 +154,7 @@ def float_flicker_cost(what: str, length: int) -> EvaluationCost:
 
 
 def exact_flicker_cost(what: str, steps: int, order_denominator: int) -> EvaluationCost:
-    """The exact rational 1/f bin variance: k·N terms whose sizes grow with the index, about (kN)^2.3.
+    """The exact rational 1/f bin variance: k·N terms whose sizes grow with the index, about (kN)^2.5.
 
     The coefficients ψ_j of a rational order p/q have denominators near q^j j!, so a larger q makes
     every term longer; the estimate scales with (log2 q + log2 kN)/(1 + log2 kN), 1 for d = 1/2.
@@ -164,7 +164,7 @@ def exact_flicker_cost(what: str, steps: int, order_denominator: int) -> Evaluat
     scale = (math.log2(max(order_denominator, 2)) + size) / (1 + size)
     return EvaluationCost(
         what,
-        "the exact 1/f bin variance takes k·N rational terms of growing size, about (kN)^2.3 work",
+        "the exact 1/f bin variance takes k·N rational terms of growing size, about (kN)^2.5 work",
         f"k·N = {_format_count(steps)} exact terms",
         _EXACT * scale * steps**_EXACT_EXPONENT,
     )
