@@ -188,10 +188,17 @@ class Formula:
             raise TypeError(
                 f"{self.name}: missing parameter(s) {missing}; parameters are {list(self.parameters)}"
             )
-        below_minimum = self.minimum_samples > 1 and "N" in values
-        if below_minimum and check_positive_integer("N", values["N"]) < self.minimum_samples:
-            raise ValueError(f"N={values['N']!r}: {self.sample_rule()}")
+        if "N" in values:
+            self._check_sample_count(check_positive_integer("N", values["N"]))
         return {p: _check_scalar(p, values[p], self.minimum_samples) for p in self.parameters}
+
+    def _check_sample_count(self, value: Any) -> None:
+        """ValueError with :meth:`sample_rule` for an integer N (or integer array) below the minimum."""
+        array = np.asarray(value)
+        if self.minimum_samples > 1 and array.dtype.kind in "iu" and array.size:
+            smallest = array.flat[int(np.argmin(array))].item()
+            if smallest < self.minimum_samples:
+                raise ValueError(f"N={smallest!r}: {self.sample_rule()}")
 
     def _substitute(self, converted: dict[str, sp.Expr]) -> sp.Expr:
         assert self.expression is not None
@@ -265,6 +272,8 @@ class Formula:
         unknown = sorted(set(values) - set(self.parameters))
         if unknown or missing:
             self._checked(values)  # raises the TypeError naming them
+        if "N" in values and not isinstance(values["N"], bool):
+            self._check_sample_count(values["N"])
         checked = [_check_array(p, values[p], self.minimum_samples) for p in self.parameters]
         arrays = np.broadcast_arrays(*checked)
         scalar = all(np.ndim(values[p]) == 0 for p in self.parameters)
