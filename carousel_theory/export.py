@@ -379,7 +379,7 @@ def _export_c(header_name: str) -> str:
     for entry in FORMULAS.values():
         if entry.expression is not None:
             lines += _c_function(entry, printer)
-    return "\n".join(lines)
+    return "\n".join(lines + _c_omissions())
 
 
 def export_formulas(format: str, *, fragment: bool = False, header_name: str = DEFAULT_HEADER_NAME) -> str:
