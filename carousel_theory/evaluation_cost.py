@@ -101,12 +101,17 @@ def check_budget(
     cost: EvaluationCost,
     *,
     force: bool = False,
-    budget_seconds: float = DEFAULT_BUDGET_SECONDS,
-    budget_bytes: float = DEFAULT_BUDGET_BYTES,
+    budget_seconds: float | None = None,
+    budget_bytes: float | None = None,
 ) -> None:
-    """Raise :class:`EvaluationBudgetError` when ``cost`` exceeds the budget and ``force`` is False."""
+    """Raise :class:`EvaluationBudgetError` when ``cost`` exceeds the budget and ``force`` is False.
+
+    The budget defaults to :data:`DEFAULT_BUDGET_SECONDS` and :data:`DEFAULT_BUDGET_BYTES`.
+    """
     if not isinstance(force, bool):
         raise TypeError(f"force={force!r}: must be True or False")
+    budget_seconds = DEFAULT_BUDGET_SECONDS if budget_seconds is None else budget_seconds
+    budget_bytes = DEFAULT_BUDGET_BYTES if budget_bytes is None else budget_bytes
     if force or (cost.seconds <= budget_seconds and cost.bytes <= budget_bytes):
         return
     limit = f"{_format_seconds(budget_seconds)}"
