@@ -13,10 +13,10 @@ Run: python benchmarks/bench_formula_numeric.py
 
 from __future__ import annotations
 
-import time
 from fractions import Fraction
 
 import numpy as np
+from bench_flicker_bins import best_of  # the same best-of-n timer as the 1/f bin benchmark
 
 from carousel_theory.evaluation_cost import exact_flicker_cost
 from carousel_theory.formulas import formula
@@ -25,15 +25,6 @@ from carousel_theory.propagation import flicker_bin_variances, flicker_carousell
 N, K_MAX, ORDER = 200, 1000, 0.5
 #: The one-call-per-bin baseline is quadratic in k; it runs to this many bins only.
 SMALL = 200
-
-
-def best_of(function, repeats: int = 3) -> tuple[float, object]:
-    best, result = float("inf"), None
-    for _ in range(repeats):
-        start = time.perf_counter()
-        result = function()
-        best = min(best, time.perf_counter() - start)
-    return best, result
 
 
 def numeric_against_propagation() -> None:

@@ -112,11 +112,15 @@ def _omission_reason(entry: Formula) -> str:
     )
 
 
-def _integer_rule(entry: Formula, parameter: str) -> tuple[int, str]:
-    """The smallest value of an integer parameter and the registry's message tail for it."""
-    if parameter == "N":
-        return entry.minimum_samples, entry.sample_rule()
-    return 1, "must be an integer >= 1"
+def _integer_rules(entry: Formula) -> dict[str, tuple[int, str]]:
+    """Each integer parameter's smallest value and the registry's message tail for it."""
+    rules = {}
+    for parameter in entry.parameters:
+        if parameter == "N":
+            rules[parameter] = (entry.minimum_samples, entry.sample_rule())
+        elif parameter in _INTEGER_PARAMETERS:
+            rules[parameter] = (1, "must be an integer >= 1")
+    return rules
 
 
 # --- JSON -----------------------------------------------------------------------------------------
@@ -247,13 +251,13 @@ def _docstring_text(entry: Formula) -> str:
 
 def _python_function(entry: Formula, printer: NumPyPrinter) -> list[str]:
     assert entry.expression is not None
-    checks = []
-    for parameter in entry.parameters:
-        if parameter in _INTEGER_PARAMETERS:
-            minimum, rule = _integer_rule(entry, parameter)
-            checks.append(f"    {parameter} = _integers({parameter!r}, {parameter}, {minimum}, {rule!r})")
-        else:
-            checks.append(f"    {parameter} = _reals({parameter})")
+    rules = _integer_rules(entry)
+    checks = [
+        f"    {p} = _integers({p!r}, {p}, {rules[p][0]}, {rules[p][1]!r})"
+        if p in rules
+        else f"    {p} = _reals({p})"
+        for p in entry.parameters
+    ]
     return [
         "",
         f"def {entry.name}({', '.join(entry.parameters)}):",
@@ -346,11 +350,9 @@ def _export_c_header() -> str:
 
 def _c_function(entry: Formula, printer: _C99Printer) -> list[str]:
     assert entry.expression is not None
-    conditions = []
-    for parameter in entry.parameters:
-        if parameter in _INTEGER_PARAMETERS:
-            minimum, _ = _integer_rule(entry, parameter)
-            conditions.append(f"!({parameter} >= {minimum} && floor({parameter}) == {parameter})")
+    conditions = [
+        f"!({p} >= {minimum} && floor({p}) == {p})" for p, (minimum, _) in _integer_rules(entry).items()
+    ]
     guard = [f"   if ({' || '.join(conditions)}) {{", "      return NAN;", "   }"] if conditions else []
     body = printer.doprint(entry.expression)
     return [
