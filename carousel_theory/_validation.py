@@ -17,6 +17,7 @@ import sympy as sp
 
 __all__ = [
     "check_bin_index",
+    "check_boolean",
     "check_correlation",
     "check_finite_array",
     "check_fractional_order",
@@ -40,6 +41,13 @@ def check_integer(name: str, value: Any) -> int:
     if not _is_integer_value(value):
         raise TypeError(f"{name}={value!r}: must be an integer (int, numpy integer or sympy Integer)")
     return int(value)
+
+
+def check_boolean(name: str, value: Any) -> bool:
+    """Return ``value`` after checking that it is ``True`` or ``False`` (not 0, 1 or a string)."""
+    if not isinstance(value, bool):
+        raise TypeError(f"{name}={value!r}: must be True or False")
+    return value
 
 
 def check_positive_integer(name: str, value: Any, minimum: int = 1) -> int:

@@ -30,7 +30,8 @@ from typing import Any
 
 import numpy as np
 
-from carousel_theory._validation import check_integer, check_positive_integer
+from carousel_theory._validation import check_boolean, check_integer, check_positive_integer
+from carousel_theory.evaluation_cost import check_budget, monte_carlo_cost
 from carousel_theory.progress import progress
 
 __all__ = [
@@ -57,6 +58,9 @@ SJ2012_SECTION = 2400
 SJ2012_BIAS = 3.0
 
 _DPI = 120
+#: Measured seconds per Monte Carlo realisation (2 × 200 × 50 samples) of the figures that simulate;
+#: ``write_figures`` refuses a run whose estimate exceeds the evaluation budget unless forced.
+_SECONDS_PER_REALISATION = {"tim2014_fig4": 2.5e-3, "tim2014_fig5": 1.8e-3}
 
 
 @dataclass(frozen=True)
@@ -295,13 +299,17 @@ def write_figures(
     seed: int = DEFAULT_SEED,
     only: list[str] | None = None,
     show_progress: bool | None = None,
+    force: bool = False,
 ) -> list[Path]:
     """Draw the figures and write them as PNG into ``out`` (created if needed); return the paths.
 
     Each figure gets its own generator ``default_rng([seed, index])`` (index = position in
-    :data:`FIGURES`), so that a figure does not change when another is left out.
+    :data:`FIGURES`), so that a figure does not change when another is left out. A Monte Carlo whose
+    estimated time exceeds the budget of :mod:`carousel_theory.evaluation_cost` is refused before
+    anything is drawn, unless ``force=True``.
     """
     realisations = check_positive_integer("realisations", realisations)
+    force = check_boolean("force", force)
     seed = check_integer("seed", seed)
     if seed < 0:
         raise ValueError(f"seed={seed!r}: must be an integer >= 0")
@@ -309,6 +317,10 @@ def write_figures(
     unknown = [name for name in names if name not in FIGURES]
     if unknown:
         raise ValueError(f"only={unknown!r}: unknown figure(s); known: {', '.join(FIGURES)}")
+    per_realisation = sum(_SECONDS_PER_REALISATION.get(name, 0.0) for name in names)
+    if per_realisation:
+        what = f"figures {', '.join(n for n in names if n in _SECONDS_PER_REALISATION)}"
+        check_budget(monte_carlo_cost(what, realisations, per_realisation), force=force)
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise ValueError(f"out={str(out)!r}: must be a directory (a file of that name exists)")

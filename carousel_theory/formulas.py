@@ -25,14 +25,23 @@ import sympy as sp
 from carousel_theory import closed_forms as cf
 from carousel_theory import symbols
 from carousel_theory._validation import (
+    check_boolean,
     check_correlation,
     check_fractional_order,
     check_positive_integer,
     check_positive_real,
     check_real,
 )
+from carousel_theory.evaluation_cost import (
+    EvaluationCost,
+    check_budget,
+    closed_form_cost,
+    exact_flicker_cost,
+    float_flicker_cost,
+    high_precision_flicker_cost,
+)
 
-__all__ = ["FORMULAS", "PARAMETER_HELP", "Formula", "formula"]
+__all__ = ["FORMULAS", "PARAMETER_HELP", "Formula", "formula", "restricted_to_samples"]
 
 # --------------------------------------------------------------------------------------------
 # Parameters: one rule per name, shared by every formula
@@ -116,6 +125,13 @@ def _check_array(name: str, value: Any, minimum_samples: int) -> np.ndarray:
     return floats
 
 
+#: The parameters of every entry without a closed form (the 1/f bin variances).
+_DELEGATED_PARAMETERS = ("d", "N", "k")
+#: Why the carouselled variances of every bin are undefined at N = 1.
+_BELOW_MINIMUM_SAMPLES = (
+    "at N = 1 nothing is carouselled and the bin variance depends on the bin: use rrw_carousel_cov"
+)
+
 # --------------------------------------------------------------------------------------------
 # The Formula
 # --------------------------------------------------------------------------------------------
@@ -126,9 +142,12 @@ class Formula:
     """A named closed form with its evaluators.
 
     ``expression`` is a SymPy expression in the symbols of :mod:`carousel_theory.symbols` (or None
-    when there is no closed form; then ``delegate_float``/``delegate_mp`` compute the value and
-    ``delegate_exact``, if given, an exact one). ``minimum_samples`` is the smallest N the formula is
-    valid for.
+    when there is no closed form; then ``delegate_bins`` computes bins 1 … k_max in float64,
+    ``delegate_mp`` one bin at any precision and ``delegate_exact``, if given, an exact one; the
+    delegated entries take the parameters (d, N, k)). ``minimum_samples`` is the smallest N the
+    formula is defined for: the one N rule that ``exact``, ``evaluate``, ``numeric``, the expression
+    (its branches below the minimum are dropped, see :func:`restricted_to_samples`) and every export
+    (:mod:`carousel_theory.export`) follow.
     """
 
     name: str
@@ -139,11 +158,24 @@ class Formula:
     description: str
     minimum_samples: int = 1
     latex_text: str | None = None
-    delegate_float: Callable[..., float] | None = field(default=None, repr=False, compare=False)
+    delegate_bins: Callable[..., np.ndarray] | None = field(default=None, repr=False, compare=False)
     delegate_mp: Callable[..., Any] | None = field(default=None, repr=False, compare=False)
     delegate_exact: Callable[..., Any] | None = field(default=None, repr=False, compare=False)
 
+    def __post_init__(self) -> None:
+        if self.expression is None:
+            assert self.parameters == _DELEGATED_PARAMETERS, self.name
+        elif self.minimum_samples > 1:
+            restricted = restricted_to_samples(self.expression, self.minimum_samples)
+            object.__setattr__(self, "expression", restricted)
+
     # -- argument handling --------------------------------------------------------------------
+
+    def sample_rule(self) -> str:
+        """The rule on N as a message tail: ``must be an integer >= 2 for … (why)``."""
+        if self.minimum_samples == 1:
+            return "must be an integer >= 1"
+        return f"must be an integer >= {self.minimum_samples} for {self.name} ({_BELOW_MINIMUM_SAMPLES})"
 
     def _checked(self, values: dict[str, Any]) -> dict[str, Any]:
         missing = [p for p in self.parameters if p not in values]
@@ -156,39 +188,66 @@ class Formula:
             raise TypeError(
                 f"{self.name}: missing parameter(s) {missing}; parameters are {list(self.parameters)}"
             )
-        if self.minimum_samples > 1 and "N" in values:
-            n = check_positive_integer("N", values["N"])
-            if n < self.minimum_samples:
-                raise ValueError(
-                    f"N={values['N']!r}: must be an integer >= {self.minimum_samples} for {self.name} "
-                    "(at N = 1 nothing is carouselled and the bin variance depends on the bin: "
-                    "use rrw_carousel_cov)"
-                )
+        if "N" in values:
+            self._check_sample_count(check_positive_integer("N", values["N"]))
         return {p: _check_scalar(p, values[p], self.minimum_samples) for p in self.parameters}
+
+    def _check_sample_count(self, value: Any) -> None:
+        """ValueError with :meth:`sample_rule` for an integer N (or integer array) below the minimum."""
+        array = np.asarray(value)
+        if self.minimum_samples > 1 and array.dtype.kind in "iu" and array.size:
+            smallest = array.flat[int(np.argmin(array))].item()
+            if smallest < self.minimum_samples:
+                raise ValueError(f"N={smallest!r}: {self.sample_rule()}")
 
     def _substitute(self, converted: dict[str, sp.Expr]) -> sp.Expr:
         assert self.expression is not None
         mapping = {getattr(symbols, p): converted[p] for p in self.parameters}
         return self.expression.subs(mapping)
 
+    def _call_text(self, values: dict[str, Any]) -> str:
+        return f"{self.name}({', '.join(f'{p}={values[p]}' for p in self.parameters)})"
+
     # -- evaluators -----------------------------------------------------------------------------
 
-    def exact(self, **values: Any) -> sp.Expr:
+    def exact(self, *, force: bool = False, **values: Any) -> sp.Expr:
         """The exact SymPy value for exact inputs (int, Fraction, sympy Rational).
 
-        Raises ValueError when no exact form exists, TypeError for a float input.
+        Raises ValueError when no exact form exists, TypeError for a float input, and
+        :class:`~carousel_theory.evaluation_cost.EvaluationBudgetError` (a ValueError) when the
+        estimated cost exceeds the budget, unless ``force=True``.
         """
+        force = check_boolean("force", force)
         checked = self._checked(values)
         converted = {p: _to_sympy_exact(p, v) for p, v in checked.items()}
-        if self.expression is None:
-            if self.delegate_exact is None:
-                raise ValueError(f"{self.name}: no exact form (use evaluate() at any precision)")
-            return sp.nsimplify(self.delegate_exact(**{p: _as_python(v) for p, v in converted.items()}))
-        return self._substitute(converted)
+        if self.expression is not None:
+            return self._substitute(converted)
+        if self.delegate_exact is None:
+            raise ValueError(f"{self.name}: no exact form (use evaluate() at any precision)")
+        order = converted["d"]
+        steps = int(converted["N"]) * int(converted["k"])
+        cost = exact_flicker_cost(f"{self._call_text(checked)} exactly", steps, int(sp.denom(order)))
+        check_budget(cost, force=force)
+        value = self.delegate_exact(**{p: _as_python(v) for p, v in converted.items()})
+        return sp.Rational(value.numerator, value.denominator)
 
-    def evaluate(self, digits: int = 50, **values: Any) -> mpmath.mpf:
-        """The value as an ``mpmath.mpf`` correct to ``digits`` significant digits."""
+    def evaluation_cost(self, digits: int = 50, **values: Any) -> EvaluationCost:
+        """The estimated cost of ``evaluate(digits, **values)`` (checked like ``evaluate``)."""
         digits = check_positive_integer("digits", digits)
+        checked = self._checked(values)
+        what = f"{self._call_text(checked)} at {digits} digits"
+        if self.expression is None:
+            return high_precision_flicker_cost(what, int(checked["N"]) * int(checked["k"]), digits)
+        return closed_form_cost(what, digits)
+
+    def evaluate(self, digits: int = 50, *, force: bool = False, **values: Any) -> mpmath.mpf:
+        """The value as an ``mpmath.mpf`` correct to ``digits`` significant digits.
+
+        Refused with :class:`~carousel_theory.evaluation_cost.EvaluationBudgetError` when the
+        estimated cost (:meth:`evaluation_cost`) exceeds the budget, unless ``force=True``.
+        """
+        force = check_boolean("force", force)
+        check_budget(self.evaluation_cost(digits, **values), force=force)
         checked = self._checked(values)
         if self.expression is None:
             assert self.delegate_mp is not None
@@ -198,32 +257,45 @@ class Formula:
         value = self._substitute(converted)
         decimal = sp.Float(value.evalf(digits + 10), digits + 10)  # evalf tracks its own error
         with mpmath.workdps(digits):
-            return mpmath.mpf(str(decimal))
+            # Binary to binary: no decimal string, so no limit on int-string conversion digits.
+            return +mpmath.mpf(decimal._mpf_)
 
-    def numeric(self, **values: Any) -> Any:
-        """float64 value; broadcasts over array arguments like a NumPy ufunc."""
+    def numeric(self, *, force: bool = False, **values: Any) -> Any:
+        """float64 value; broadcasts over array arguments like a NumPy ufunc.
+
+        The 1/f entries group the arguments by (d, N) and take all bins 1 … max k of a group from
+        one FFT (:func:`carousel_theory.propagation.flicker_bin_variances`); refused when that
+        FFT's estimated cost exceeds the budget, unless ``force=True``.
+        """
+        force = check_boolean("force", force)
         missing = [p for p in self.parameters if p not in values]
         unknown = sorted(set(values) - set(self.parameters))
         if unknown or missing:
             self._checked(values)  # raises the TypeError naming them
+        if "N" in values and not isinstance(values["N"], bool):
+            self._check_sample_count(values["N"])
         checked = [_check_array(p, values[p], self.minimum_samples) for p in self.parameters]
         arrays = np.broadcast_arrays(*checked)
         scalar = all(np.ndim(values[p]) == 0 for p in self.parameters)
         if self.expression is None:
-            assert self.delegate_float is not None
-            result = np.vectorize(self._float_delegate_call, otypes=[np.float64])(*arrays)
+            result = self._numeric_from_bins(*arrays, force=force)
         else:
             result = np.asarray(_lambdified(self.name, self)(*arrays), dtype=np.float64)
             result = np.broadcast_to(result, arrays[0].shape if arrays else ()).copy()
         return float(result) if scalar else result
 
-    def _float_delegate_call(self, *arguments: float) -> float:
-        assert self.delegate_float is not None
-        named = dict(zip(self.parameters, arguments, strict=True))
-        for p in ("N", *_BIN_PARAMETERS):
-            if p in named:
-                named[p] = int(named[p])
-        return float(self.delegate_float(**named))
+    def _numeric_from_bins(self, d: np.ndarray, N: np.ndarray, k: np.ndarray, *, force: bool) -> np.ndarray:
+        assert self.delegate_bins is not None
+        groups = np.unique(np.stack([d.ravel(), N.ravel()]), axis=1).T if d.size else np.empty((0, 2))
+        masks = [(d == order) & (samples == N) for order, samples in groups]
+        last_bins = [int(k[mask].max()) for mask in masks]
+        length = sum(int(samples) * bins for (_, samples), bins in zip(groups, last_bins, strict=True))
+        check_budget(float_flicker_cost(f"{self.name} numeric", length), force=force)
+        result = np.empty(d.shape, dtype=np.float64)
+        for (order, samples), mask, bins in zip(groups, masks, last_bins, strict=True):
+            variances = self.delegate_bins(float(order), int(samples), bins)
+            result[mask] = variances[k[mask].astype(np.int64) - 1]
+        return result
 
     def latex(self) -> str:
         """The formula in LaTeX (the defining expression when there is no closed form)."""
@@ -231,6 +303,30 @@ class Formula:
             assert self.latex_text is not None
             return self.latex_text
         return sp.latex(self.expression)
+
+
+def restricted_to_samples(expression: sp.Expr, minimum_samples: int) -> sp.Expr:
+    """``expression`` without its Piecewise branches for N = 1 … minimum_samples − 1.
+
+    Below its minimum a formula has no value: the branch that gave one (e.g. rrw_carousel_var = 1
+    at N = 1, the first bin's variance only) is removed, so that the expression is undefined there
+    (csc²(π/N) at N = 1 is SymPy's complex infinity) like ``exact`` and ``numeric``, which refuse.
+    """
+
+    def below(condition: Any) -> bool:
+        return (
+            isinstance(condition, sp.Eq)
+            and condition.lhs == symbols.N
+            and condition.rhs.is_Integer
+            and int(condition.rhs) < minimum_samples
+        )
+
+    def drop(piecewise: sp.Piecewise) -> sp.Expr:
+        return sp.Piecewise(
+            *[(term, condition) for term, condition in piecewise.args if not below(condition)]
+        )
+
+    return expression.replace(lambda node: isinstance(node, sp.Piecewise), drop)
 
 
 def _as_python(value: sp.Expr) -> Any:
@@ -255,10 +351,10 @@ def _lambdified(name: str, entry: Formula) -> Callable[..., Any]:
 # --------------------------------------------------------------------------------------------
 
 
-def _flicker_averaged_float(d: Any, N: int, k: int) -> float:
-    from carousel_theory.propagation import flicker_averaged_bin_variance
+def _flicker_averaged_bins(d: float, N: int, k_max: int) -> np.ndarray:
+    from carousel_theory.propagation import flicker_bin_variances
 
-    return float(flicker_averaged_bin_variance(d, N, k))
+    return flicker_bin_variances(d, N, k_max, "averaged")
 
 
 def _flicker_averaged_mp(d: Any, N: int, k: int, digits: int) -> Any:
@@ -273,10 +369,10 @@ def _flicker_averaged_exact(d: Any, N: int, k: int) -> Fraction:
     return flicker_averaged_bin_variance_exact(Fraction(d), N, k)
 
 
-def _flicker_carouselled_float(d: Any, N: int, k: int) -> float:
-    from carousel_theory.propagation import flicker_carouselled_bin_variance
+def _flicker_carouselled_bins(d: float, N: int, k_max: int) -> np.ndarray:
+    from carousel_theory.propagation import flicker_bin_variances
 
-    return float(flicker_carouselled_bin_variance(d, N, k))
+    return flicker_bin_variances(d, N, k_max, "carouselled")
 
 
 def _flicker_carouselled_mp(d: Any, N: int, k: int, digits: int) -> Any:
@@ -335,7 +431,7 @@ _ENTRIES = [
         "Variance of the k-th N-sample mean of 1/f noise; exact (Rational) for rational d, no closed form.",
         latex_text=r"\frac{1}{N^2}\sum_{j=0}^{kN-1}\left(\Psi_j-\Psi_{j-N}\right)^2,\quad "
         r"\Psi_j=\sum_{l=0}^{j}\frac{\Gamma(l+d)}{\Gamma(l+1)\Gamma(d)}",
-        delegate_float=_flicker_averaged_float,
+        delegate_bins=_flicker_averaged_bins,
         delegate_mp=_flicker_averaged_mp,
         delegate_exact=_flicker_averaged_exact,
     ),
@@ -347,7 +443,7 @@ _ENTRIES = [
         "TIM 2014 eq. (3), (16) and §III-D, sᵀF_kF_kᵀs + cᵀF_kF_kᵀc for the k-th bin",
         "Variance of the k-th carouselled estimate of 1/f noise; no closed form (evaluate at any precision).",
         latex_text=r"\sum_{j}\left(\sum_{u}s_u\psi_{u-N+j}\right)^2+\left(\sum_{u}c_u\psi_{u-N+j}\right)^2",
-        delegate_float=_flicker_carouselled_float,
+        delegate_bins=_flicker_carouselled_bins,
         delegate_mp=_flicker_carouselled_mp,
     ),
     Formula(
@@ -405,10 +501,9 @@ _ENTRIES = [
         "rrw_carousel_var_cos",
         ("N",),
         cf.RRW_CAROUSEL_COSINE_VARIANCE,
-        f"{_RRW}; {_CAROUSEL}; {_N1}",
+        f"{_RRW}; {_CAROUSEL}",
         "TIM 2014 eq. (18) cosine term, cᵀRRᵀc, exact finite-N form",
-        "cᵀRRᵀc = (csc²(π/N) + 2)/(8N) for N >= 3 (1/4 at N = 2) ~ N/(8π²).",
-        minimum_samples=2,
+        "cᵀRRᵀc = (csc²(π/N) + 2)/(8N) for N >= 3 (1/4 at N = 2; 1 at N = 1, where c = (1)) ~ N/(8π²).",
     ),
     Formula(
         "rrw_carousel_var_sin",

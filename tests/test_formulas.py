@@ -308,3 +308,46 @@ def test_invalid_calls(call, error, message):
 def test_all_is_honest():
     for name in formulas.__all__:
         assert hasattr(formulas, name)
+
+
+# --- 1/f entries: numeric through one FFT per (d, N) ---------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("name", "method"), [("flicker_average_var", "averaged"), ("flicker_carousel_var", "carouselled")]
+)
+def test_flicker_numeric_over_many_bins_is_the_propagation_fast_path(name, method):
+    """The case of the issue: 1000 bins of TIM 2014 Fig. 5 (d = 1/2, N = 200) in one call."""
+    from carousel_theory.propagation import flicker_bin_variances
+
+    bins = np.arange(1, 1001)
+    got = formula(name).numeric(d=0.5, N=200, k=bins)
+    np.testing.assert_array_equal(got, flicker_bin_variances(0.5, 200, 1000, method))
+
+
+@pytest.mark.parametrize("name", ["flicker_average_var", "flicker_carousel_var"])
+def test_flicker_numeric_groups_mixed_orders_and_sizes_against_50_digits(name):
+    d = np.array([[0.25], [0.5], [0.75]])
+    N = np.array([1, 2, 5, 5])
+    k = np.array([3, 1, 2, 4])
+    got = formula(name).numeric(d=d, N=N, k=k)
+    assert got.shape == (3, 4)
+    for row in range(3):
+        for column in range(4):
+            expected = formula(name).evaluate(d=float(d[row, 0]), N=int(N[column]), k=int(k[column]))
+            assert math.isclose(got[row, column], float(expected), rel_tol=1e-12), (row, column)
+
+
+def test_flicker_carousel_var_at_one_sample_is_the_cosine_gyros_variance():
+    """N = 1: the one weight is cos 2π = 1 on the y gyro, so bin k is f_k: Var = Σ_{j<k} ψ_j² (eq. (3))."""
+    psi = [Fraction(1)]
+    for j in range(1, 6):
+        psi.append(psi[-1] * (j - 1 + Fraction(1, 2)) / j)
+    for k in range(1, 7):
+        expected = sum(p * p for p in psi[:k])
+        assert math.isclose(
+            formula("flicker_carousel_var").numeric(d=0.5, N=1, k=k), float(expected), rel_tol=1e-13
+        )
+        assert formula("flicker_average_var").exact(d=Fraction(1, 2), N=1, k=k) == sp.Rational(
+            expected.numerator, expected.denominator
+        )

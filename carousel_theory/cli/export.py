@@ -1,4 +1,8 @@
-"""``carousel-theory export``: the formula registry as JSON, LaTeX, Python or C source."""
+"""``carousel-theory export``: the formula registry as JSON, LaTeX, Python (NumPy) or C99 source.
+
+``--format c -o DIR/NAME.c`` writes the source and its header ``DIR/NAME.h`` (which the source
+includes); ``--format latex --fragment`` writes only the equations, for ``\\input``.
+"""
 
 from __future__ import annotations
 
@@ -12,11 +16,17 @@ from carousel_theory.export import FORMATS, export_formulas
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "export",
-        help="export the formula registry as JSON, LaTeX, Python or C source",
+        help="export the formula registry as JSON, LaTeX, Python (NumPy) or C99 source",
         description="Print every closed form of the formula registry with SymPy's printers (JSON, LaTeX, "
-        "Python, C). Entries without a closed form (1/f noise) are listed as documented omissions.",
+        "Python with NumPy, C99 with its header). Entries without a closed form (1/f noise) are listed as "
+        "documented omissions. With --format c and -o NAME.c, the header NAME.h is written beside it.",
     )
     parser.add_argument("--format", required=True, choices=sorted(FORMATS), help="output format")
+    parser.add_argument(
+        "--fragment",
+        action="store_true",
+        help="with --format latex: only the numbered equations (ASCII, amsmath), to \\input into a document",
+    )
     parser.add_argument("-o", "--output", type=Path, help="write to this file instead of standard output")
     parser.add_argument(
         "--check", action="store_true", help="with -o: write nothing; fail if the file would change"
@@ -24,18 +34,37 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(handler=run)
 
 
+def _documents(args: argparse.Namespace) -> list[tuple[Path | None, str]]:
+    """(path, text) of every file the command writes (path None: standard output)."""
+    if args.format != "c" or args.output is None:
+        return [(args.output, export_formulas(args.format, fragment=args.fragment))]
+    header = args.output.with_suffix(FORMATS["c-header"])
+    if header == args.output:
+        raise ValueError(f"-o {args.output}: the C source needs a name not ending in .h (e.g. formulas.c)")
+    return [
+        (args.output, export_formulas("c", header_name=header.name)),
+        (header, export_formulas("c-header")),
+    ]
+
+
 def run(args: argparse.Namespace) -> int:
     if args.check and args.output is None:
         raise ValueError("--check needs -o FILE (the file to compare with)")
-    text = export_formulas(args.format)
-    if args.output is None:
-        print(text, end="")
-        return 0
-    if args.output.is_dir():
+    if args.fragment and args.format != "latex":
+        raise ValueError(f"--fragment: only with --format latex, not --format {args.format}")
+    if args.output is not None and args.output.is_dir():
         raise IsADirectoryError(f"-o {args.output}: is a directory; give a file name")
-    same = write_or_compare(args.output, text, args.check)
-    if args.check:
-        print(f"{args.output} up to date" if same else f"{args.output} out of date: rerun without --check")
-        return 0 if same else 1
-    print(f"wrote {args.output}")
-    return 0
+    documents = _documents(args)
+    if args.output is None:
+        print(documents[0][1], end="")
+        return 0
+    stale = []
+    for path, text in documents:
+        assert path is not None
+        same = write_or_compare(path, text, args.check)
+        if args.check:
+            print(f"{path} up to date" if same else f"{path} out of date: rerun without --check")
+            stale += [] if same else [path]
+        else:
+            print(f"wrote {path}")
+    return 1 if stale else 0

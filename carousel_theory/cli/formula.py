@@ -13,12 +13,20 @@ with ``digits`` significant digits), ``digits``, ``source``.
 The 1/f entries have no closed form: their ``exact`` is null unless ``--exact`` is given (for
 ``flicker_average_var`` with rational d it is then computed in O(kN) exact rational arithmetic,
 which grows quickly with kN; ``flicker_carousel_var`` has no exact form and ``--exact`` fails).
+
+Evaluations whose estimated cost exceeds the budget of :mod:`carousel_theory.evaluation_cost`
+(60 s, 4 GiB) are refused before any work with a one-line message naming the value, the rule and
+the estimate; ``--force`` runs them anyway. Exact values and decimals longer than Python's
+4300-digit int-string limit are printed in full.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
+import sys
+from collections.abc import Iterator
 from typing import Any
 
 import mpmath
@@ -56,7 +64,27 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help=f"significant digits of the decimal value (default {DEFAULT_DIGITS})",
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object instead of text")
+    parser.add_argument(
+        "--force",
+        action="store_true",
+        help="run an evaluation whose estimated cost exceeds the budget (60 s, 4 GiB) instead of refusing it",
+    )
     parser.set_defaults(handler=run)
+
+
+@contextlib.contextmanager
+def unlimited_int_string_digits() -> Iterator[None]:
+    """Lift Python's int-string conversion limit (4300 digits) while printing a computed value.
+
+    The limit guards against quadratic-time parsing of untrusted text; the values printed here are
+    the package's own results, whose size the evaluation budget already bounds.
+    """
+    previous = sys.get_int_max_str_digits()
+    sys.set_int_max_str_digits(0)
+    try:
+        yield
+    finally:
+        sys.set_int_max_str_digits(previous)
 
 
 def parse_exact_number(key: str, text: str) -> sp.Rational:
@@ -113,6 +141,32 @@ def _listing(as_json: bool) -> str:
     return "\n".join(lines)
 
 
+def _evaluate(args: argparse.Namespace) -> tuple[Any, dict[str, sp.Rational], sp.Expr | None, str, int]:
+    """The entry, the parsed values, the exact value (or None), the decimal string and its digits."""
+    entry = formula(args.name)
+    values = parse_assignments(args.assignments)
+    digits = args.digits
+    if digits < 1:
+        raise ValueError(f"--digits={digits}: must be an integer >= 1")
+    exact: sp.Expr | None = None
+    if entry.expression is not None or args.exact:
+        exact = entry.exact(force=args.force, **values)  # raises ValueError when no exact form exists
+    if args.exact:
+        assert exact is not None
+        decimal = sp.Float(sp.N(exact, DEFAULT_DIGITS + 10), DEFAULT_DIGITS + 10)
+        with mpmath.workdps(DEFAULT_DIGITS + 10):  # the mpf must carry the digits it is printed with
+            return (
+                entry,
+                values,
+                exact,
+                format_value(mpmath.mpf(decimal._mpf_), DEFAULT_DIGITS),
+                DEFAULT_DIGITS,
+            )
+    with mpmath.workdps(digits):
+        value = format_value(entry.evaluate(digits=digits, force=args.force, **values), digits)
+    return entry, values, exact, value, digits
+
+
 def run(args: argparse.Namespace) -> int:
     if args.list:
         if args.name or args.assignments:
@@ -121,22 +175,15 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if not args.name:
         raise ValueError("NAME is required (or --list); see `carousel-theory formula --list`")
-    entry = formula(args.name)
-    values = parse_assignments(args.assignments)
-    digits = args.digits
-    if digits < 1:
-        raise ValueError(f"--digits={digits}: must be an integer >= 1")
-    exact: sp.Expr | None = None
-    if entry.expression is not None or args.exact:
-        exact = entry.exact(**values)  # raises ValueError when no exact form exists
-    if args.exact:
-        exact_value = exact
-        assert exact_value is not None
-        with mpmath.workdps(DEFAULT_DIGITS + 10):  # the mpf must carry the digits it is printed with
-            value = format_value(mpmath.mpf(str(sp.N(exact_value, DEFAULT_DIGITS + 10))), DEFAULT_DIGITS)
-        digits = DEFAULT_DIGITS
-    else:
-        value = format_value(entry.evaluate(digits=digits, **values), digits)
+    entry, values, exact, value, digits = _evaluate(args)
+    with unlimited_int_string_digits():
+        _print_result(args, entry, values, exact, value, digits)
+    return 0
+
+
+def _print_result(
+    args: argparse.Namespace, entry: Any, values: dict[str, sp.Rational], exact: Any, value: str, digits: int
+) -> None:
     if args.json:
         result: dict[str, Any] = {
             "name": entry.name,
@@ -147,12 +194,9 @@ def run(args: argparse.Namespace) -> int:
             "source": entry.source,
         }
         print(json.dumps(result, ensure_ascii=False))
-        return 0
+        return
     call = f"{entry.name}({', '.join(f'{key}={values[key]}' for key in entry.parameters)})"
-    if args.exact:
-        print(f"{call} = {exact}")
-        return 0
     if exact is not None:
         print(f"{call} = {exact}")
-    print(f"{call} ≈ {value}")
-    return 0
+    if not args.exact:
+        print(f"{call} ≈ {value}")
