@@ -1,0 +1,96 @@
+"""Turning what a sub-command raises into one line and an exit status.
+
+Exit status 2: the input or an option is wrong (``ValueError``, ``TypeError``, a missing or unreadable
+file, an output the policy refuses, a name too long). Exit status 1: a failure the user did not cause
+but can act on (disk full, out of memory, a numerical failure the library could not avoid). An
+unforeseen exception prints one line that says so and how to see the traceback (``--debug``).
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+import sys
+import traceback
+
+__all__ = ["BAD_INPUT", "FAILURE", "OPTIONAL_EXTRAS", "classify", "report_error", "silence_closed_pipe"]
+
+BAD_INPUT = 2
+FAILURE = 1
+
+#: Optional module → the extra that installs it.
+OPTIONAL_EXTRAS = {
+    "matplotlib": ("plotting", "plots"),
+    "dask": ("batch runs", "batch"),
+    "distributed": ("batch runs", "batch"),
+    "h5py": ("HDF5 files", "hdf5"),
+}
+
+_BAD_INPUT_ERRNOS = {
+    errno.ENOENT,
+    errno.EISDIR,
+    errno.ENOTDIR,
+    errno.EACCES,
+    errno.EPERM,
+    errno.ENAMETOOLONG,
+    errno.EEXIST,
+    errno.EROFS,
+}
+
+
+def _os_message(error: OSError) -> str:
+    where = error.filename if error.filename is not None else ""
+    reason = error.strerror or str(error)
+    return f"{where}: {reason}" if where else reason
+
+
+def classify(error: BaseException) -> tuple[int, str]:
+    """The exit status and the one-line message for ``error`` (no command name)."""
+    if isinstance(error, ModuleNotFoundError) and (error.name or "").split(".")[0] in OPTIONAL_EXTRAS:
+        what, extra = OPTIONAL_EXTRAS[(error.name or "").split(".")[0]]
+        return BAD_INPUT, f"{what} needs {error.name}: python -m pip install 'carousel-theory[{extra}]'"
+    if isinstance(error, OSError):
+        status = BAD_INPUT if error.errno in _BAD_INPUT_ERRNOS else FAILURE
+        return status, _os_message(error)
+    if isinstance(error, MemoryError):
+        return FAILURE, (
+            "out of memory: the request needs more memory than this machine has;"
+            " use a shorter recording, fewer axes or fewer τ"
+        )
+    numerical = (ArithmeticError, _linalg_error())
+    if isinstance(error, numerical):
+        return (
+            FAILURE,
+            f"numerical failure ({type(error).__name__}: {error}); the data or options may be degenerate",
+        )
+    if isinstance(error, ValueError | TypeError):
+        return BAD_INPUT, str(error)
+    return FAILURE, (
+        f"unexpected {type(error).__name__}: {error} "
+        "(run again with --debug for the traceback, and please report it)"
+    )
+
+
+def _linalg_error() -> type[BaseException]:
+    import numpy as np
+
+    return np.linalg.LinAlgError
+
+
+def report_error(command: str, error: BaseException, *, debug: bool) -> int:
+    """Print ``error`` as one line (or with its traceback when ``debug``); return the exit status."""
+    status, message = classify(error)
+    if debug:
+        traceback.print_exception(error, file=sys.stderr)
+    print(f"carousel-theory {command}: error: {message}", file=sys.stderr)
+    return status
+
+
+def silence_closed_pipe() -> int:
+    """The reader of our output went away (``| head``): stop quietly, without a second error at exit."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):
+        pass
+    return 0
