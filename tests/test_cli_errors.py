@@ -27,6 +27,7 @@ from carousel_theory.cli._errors import BAD_INPUT, FAILURE, classify
         (NotADirectoryError(errno.ENOTDIR, "Not a directory", "a.csv/x.md"), BAD_INPUT, "a.csv/x.md"),
         (OSError(errno.ENAMETOOLONG, "File name too long", "xxx"), BAD_INPUT, "File name too long"),
         (OSError(errno.ENOSPC, "No space left on device", "/dev/full"), FAILURE, "No space left"),
+        (IsADirectoryError("-o /tmp: is a directory"), BAD_INPUT, "-o /tmp: is a directory"),
         (MemoryError(), FAILURE, "out of memory"),
         (np.linalg.LinAlgError("Matrix is not positive definite"), FAILURE, "numerical failure"),
         (OverflowError("int too large"), FAILURE, "numerical failure"),

@@ -26,6 +26,13 @@ OPTIONAL_EXTRAS = {
     "h5py": ("HDF5 files", "hdf5"),
 }
 
+_BAD_INPUT_OS_ERRORS = (
+    FileNotFoundError,
+    IsADirectoryError,
+    NotADirectoryError,
+    PermissionError,
+    FileExistsError,
+)
 _BAD_INPUT_ERRNOS = {
     errno.ENOENT,
     errno.EISDIR,
@@ -50,7 +57,8 @@ def classify(error: BaseException) -> tuple[int, str]:
         what, extra = OPTIONAL_EXTRAS[(error.name or "").split(".")[0]]
         return BAD_INPUT, f"{what} needs {error.name}: python -m pip install 'carousel-theory[{extra}]'"
     if isinstance(error, OSError):
-        status = BAD_INPUT if error.errno in _BAD_INPUT_ERRNOS else FAILURE
+        caller_error = isinstance(error, _BAD_INPUT_OS_ERRORS) or error.errno in _BAD_INPUT_ERRNOS
+        status = BAD_INPUT if caller_error else FAILURE
         return status, _os_message(error)
     if isinstance(error, MemoryError):
         return FAILURE, (
