@@ -17,8 +17,10 @@ __all__ = [
     "DIGITS",
     "EXAMPLE_RECORD",
     "SIMULATION_N",
+    "UndecidedIdentityError",
     "check_rrw_future_dependence",
     "conditional_rrw_covariance",
+    "counterexample",
     "cumulative_sum_matrix",
     "exact_mpf",
     "exact_sequence",
@@ -96,8 +98,58 @@ def six_digits(value: float) -> str:
     return f"{value:.6g}"
 
 
-def simplifies_to_zero(expression: sp.Expr) -> bool:
-    return sp.simplify(expression) == 0
+class UndecidedIdentityError(ArithmeticError):
+    """SymPy's simplifier left a remainder, and no sample point shows the remainder to be nonzero:
+    neither a proof nor a counterexample. A check that meets it reports FAILED."""
+
+
+#: Values tried for each free symbol, by its assumptions: integers ≥ 2 for integer symbols, and
+#: rationals for the others (positive ones where the symbol is positive).
+_INTEGER_SAMPLES = (2, 3, 5, 7, 12)
+_RATIONAL_SAMPLES = (sp.Rational(1, 3), sp.Rational(5, 2), sp.Rational(3, 7), sp.Rational(9, 4), 2)
+
+
+def _sample_points(symbols: list[sp.Symbol]) -> list[dict[sp.Symbol, sp.Expr]]:
+    points = []
+    for index in range(len(_INTEGER_SAMPLES)):
+        point = {}
+        for offset, symbol in enumerate(symbols):
+            pool = _INTEGER_SAMPLES if symbol.is_integer else _RATIONAL_SAMPLES
+            value = sp.sympify(pool[(index + offset) % len(pool)])
+            point[symbol] = value if symbol.is_nonnegative or symbol.is_positive else value * (-1) ** offset
+        points.append(point)
+    return points
+
+
+def counterexample(expression: sp.Expr) -> str | None:
+    """A point where ``expression`` is nonzero, shown exactly (a nonzero rational) or at 50 digits
+    (|value| above 10⁻⁴⁰ at both 50 and 70 digits); ``None`` if no sample point shows one."""
+    for point in _sample_points(sorted(expression.free_symbols, key=str)):
+        value = sp.nsimplify(expression.subs(point)) if expression.free_symbols else expression
+        where = ", ".join(f"{symbol} = {point[symbol]}" for symbol in sorted(point, key=str)) or "as printed"
+        if value.is_Rational and value != 0:
+            return f"{where}: {value} (exact)"
+        low, high = sp.N(value, DIGITS), sp.N(value, DIGITS + 20)
+        if low.is_number and abs(low) > sp.Float("1e-40") and abs(high - low) < abs(low) * sp.Float("1e-30"):
+            return f"{where}: {sp.N(value, 12)} (at {DIGITS} digits)"
+    return None
+
+
+def simplifies_to_zero(expression: sp.Expr | sp.Matrix) -> bool:
+    """True when SymPy simplifies ``expression`` (every entry of a matrix) to 0; False only with a
+    counterexample (:func:`counterexample`); raises :class:`UndecidedIdentityError` when neither decides,
+    so that a simplifier that stops short of zero never turns into a refutation."""
+    entries = list(expression) if isinstance(expression, sp.MatrixBase) else [expression]
+    for entry in entries:
+        remainder = sp.simplify(entry)
+        if remainder == 0:
+            continue
+        if counterexample(remainder) is None:
+            raise UndecidedIdentityError(
+                f"simplify left {sp.sstr(remainder)!r} and no sample point is nonzero"
+            )
+        return False
+    return True
 
 
 def cumulative_sum_matrix(size: int) -> sp.Matrix:

@@ -14,6 +14,7 @@ from carousel_theory.allan import (
     flicker_allan_variance,
 )
 from carousel_theory.claim import Claim, Status, Verdict
+from carousel_theory.claims._common import simplifies_to_zero
 from carousel_theory.propagation import weighted_sum_variance
 
 __all__ = ["CLAIMS"]
@@ -49,7 +50,7 @@ def _check_bias_integrates_linearly() -> Verdict:
     angle = sp.integrate(bias, (s, 0, time))
     samples = sp.Symbol("k", integer=True, positive=True)
     discrete = sp.summation(bias, (sp.Symbol("i", integer=True, positive=True), 1, samples))
-    if sp.simplify(angle - bias * time) == 0 and sp.simplify(discrete - bias * samples) == 0:
+    if simplifies_to_zero(angle - bias * time) and simplifies_to_zero(discrete - bias * samples):
         return Verdict(
             Status.PROVED,
             "∫_0^t b ds = b·t (and Σ_{i≤k} b = k·b in discrete time): a constant rate bias gives an angle "

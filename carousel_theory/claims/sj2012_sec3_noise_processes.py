@@ -35,6 +35,7 @@ from carousel_theory.claims._common import (
     real_d,
     real_hurst,
     real_m,
+    simplifies_to_zero,
 )
 from carousel_theory.fitting import NoiseModel
 from carousel_theory.processes import flicker_covariance
@@ -91,7 +92,7 @@ def _check_eq4() -> Verdict:
     if (
         spectrum_ratio == 1
         and len(exponent_match) == 1
-        and sp.simplify(exponent_match[0] - (real_hurst - sp.Rational(1, 2))) == 0
+        and simplifies_to_zero(exponent_match[0] - (real_hurst - sp.Rational(1, 2)))
     ):
         return Verdict(
             Status.PROVED,
@@ -164,7 +165,7 @@ def _check_rrw_positive_slope() -> Verdict:
     slope = sp.simplify(m * sp.diff(sp.log(RRW_ALLAN_VARIANCE), m))
     limit = sp.limit(slope, m, sp.oo)
     at_one = slope.subs(m, 1)
-    if limit == 1 and sp.simplify(slope - (2 * m**2 - 1) / (2 * m**2 + 1)) == 0:
+    if limit == 1 and simplifies_to_zero(slope - (2 * m**2 - 1) / (2 * m**2 + 1)):
         return Verdict(
             Status.PROVED,
             f"RRW Allan variance σ_q²(2m²+1)/(6m) has log-log slope (2m²−1)/(2m²+1) > 0 for m ≥ 1 ({at_one} "
@@ -205,7 +206,7 @@ def _check_optimal_averaging_time() -> Verdict:
     stationary = sp.solve(sp.diff(total, m), m)
     expected = sp.sqrt((6 * white_variance + rrw_variance) / (2 * rrw_variance))
     second = sp.simplify(sp.diff(total, m, 2).subs(m, expected))
-    if len(stationary) == 1 and sp.simplify(stationary[0] - expected) == 0 and second.is_positive:
+    if len(stationary) == 1 and simplifies_to_zero(stationary[0] - expected) and second.is_positive:
         return Verdict(
             Status.PROVED,
             "White + RRW Allan variance σ²/m + σ_q²(2m²+1)/(6m) falls (slope −1) then rises (slope +1); its "

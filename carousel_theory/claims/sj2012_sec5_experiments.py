@@ -13,14 +13,18 @@ import functools
 import math
 from collections.abc import Callable
 
+import numpy as np
+
 from carousel_theory.claim import Claim, Status, Verdict
 from carousel_theory.prediction import (
     METHODS,
     BiasModel,
     error_moments,
     population_metrics,
+    prediction_weights,
     sampling_standard_errors,
 )
+from carousel_theory.processes import fractional_coefficients
 
 __all__ = ["CLAIMS"]
 
@@ -151,21 +155,75 @@ def _check_rsse_definition() -> Verdict:
     return Verdict(Status.FAILED, "the table does not match the root either")
 
 
+def _generalised_least_squares_weights(calibration: int, horizon: int, d: float) -> np.ndarray:
+    """The best linear unbiased predictor of y_{n+1..n+h} from y_1..y_n for y = b + f, b an unknown
+    constant and f the process (3) from the first sample (no white noise), by dense GLS:
+    M = Γ_fc Γ_cc⁻¹ + (1 − Γ_fc Γ_cc⁻¹ 1)(1ᵀ Γ_cc⁻¹ 1)⁻¹ 1ᵀ Γ_cc⁻¹, with Γ = Ψ Ψᵀ."""
+    length = calibration + horizon
+    psi = fractional_coefficients(d, length)
+    lower = np.zeros((length, length))
+    for row in range(length):
+        lower[row, : row + 1] = psi[row::-1]
+    covariance = lower @ lower.T
+    past, future = covariance[:calibration, :calibration], covariance[calibration:, :calibration]
+    ones = np.ones(calibration)
+    solved_ones = np.linalg.solve(past, ones)
+    simple = np.linalg.solve(past, future.T).T  # Γ_fc Γ_cc⁻¹
+    return simple + np.outer(1 - simple @ ones, solved_ones / (ones @ solved_ones))
+
+
+def _filter_population(bias_prior: str) -> dict[str, float]:
+    model = BiasModel(bias_prior=bias_prior)
+    return {m: population_metrics(CALIBRATION, HORIZON, m, model)[1] for m in METHODS}
+
+
 def _check_kf_optimal() -> Verdict:
-    populations, _, _, _, _ = _table1_analysis()
-    squares = {m: population_metrics(CALIBRATION, HORIZON, m, BiasModel())[1] for m in METHODS}
-    if squares["KF"] < min(squares["MA"], squares["CM"]) and populations["KF"]["mean_rsse"] < min(
-        populations["MA"]["mean_rsse"], populations["CM"]["mean_rsse"]
-    ):
-        return Verdict(
-            Status.VERIFIED,
-            "Exact population values at d = 1/2, σ_w = 1: E RSSE² = "
-            + ", ".join(f"{m} {squares[m]:.5g}" for m in METHODS)
-            + "; E RSSE = "
-            + ", ".join(f"{m} {populations[m]['mean_rsse']:.5g}" for m in METHODS)
-            + ": the KF is lowest.",
+    gls = _generalised_least_squares_weights(60, 20, 0.5)
+    diffuse_weights = prediction_weights(60, 20, "KF", BiasModel(bias_prior="diffuse"))
+    gap = float(np.max(np.abs(gls - diffuse_weights)))
+    plug_in, diffuse = _filter_population("calibration-mean"), _filter_population("diffuse")
+    lowest_of_three = plug_in["KF"] < min(plug_in["MA"], plug_in["CM"])
+    if gap > 1e-9 or not lowest_of_three or not diffuse["KF"] < plug_in["KF"]:
+        return Verdict(Status.FAILED, f"GLS gap {gap:.3g}; E RSSE² plug-in {plug_in}, diffuse {diffuse}")
+    return Verdict(
+        Status.QUALIFIED,
+        "Exact E RSSE² at d = 1/2, σ_w = 1, 1000 + 1000 samples: the paper's KF (sample mean as the bias "
+        "state) "
+        + ", ".join(f"{m} {plug_in[m]:.5g}" for m in METHODS)
+        + f": lowest of the three. It is not the minimum among linear unbiased predictors: the KF with "
+        f"the bias as an unknown (diffuse) state reaches {diffuse['KF']:.5g}; its weights equal the "
+        f"generalised-least-squares predictor (dense GLS, 60 + 20 samples, to {gap:.1e}). 'In theory "
+        "minimises the error variance' holds for that filter, not for the one the paper ran.",
+        corrected="the KF that treats the bias as an unknown state (diffuse prior) minimises E Σe² among "
+        "linear unbiased predictors; the plug-in KF of Table I does not, though its E Σe² is still the "
+        "lowest of KF, MA and CM",
+    )
+
+
+def _check_kf_filter_of_table() -> Verdict:
+    plug_in = _table1_analysis("calibration-mean")
+    diffuse = _table1_analysis("diffuse")
+    printed = TABLE1_SIMULATED["KF"][1]
+    parts = []
+    for name, (populations, errors, scale, _, chi_square) in (("plug-in", plug_in), ("diffuse", diffuse)):
+        expected = scale * populations["KF"]["std_ie"]
+        z = (printed - expected) / (scale * errors["KF"]["std_ie"])
+        parts.append(
+            f"{name}: χ² = {chi_square:.2f} on 11 dof at σ_w = {scale:.3f}, KF IE std {expected:.4g} "
+            f"({z:+.2f} SE from the printed {printed})"
         )
-    return Verdict(Status.REFUTED, f"E RSSE² {squares}")
+    worse = max(plug_in[4], diffuse[4])
+    status = (
+        Status.CONSISTENT if plug_in[4] < diffuse[4] and worse < 11 + Z * math.sqrt(22) else Status.FAILED
+    )
+    return Verdict(
+        status,
+        "The twelve simulated numbers of Table I against the exact population values of each filter — "
+        + "; ".join(parts)
+        + ". The plug-in filter (the sample mean as an additional state, §IV-A) fits better, as the text "
+        "says; both are within the sampling error of 1000 runs, so the table alone does not exclude the "
+        "diffuse filter.",
+    )
 
 
 def _sigma_multiple_check(
@@ -338,6 +396,14 @@ CLAIMS: list[Claim] = [
         "§V, §V-C",
         "The KF should, in theory, minimise the error variance among linear estimators (lowest RSSE).",
         _check_kf_optimal,
+    ),
+    Claim(
+        "SJ2012-table1-simulated-kf-filter",
+        "SJ2012",
+        "§IV-A; Table I, simulated",
+        "The KF of Table I is the filter of §IV-A, which handles the bias, unknown before calibration, "
+        "by 'taking the sample mean as an additional state variable'.",
+        _check_kf_filter_of_table,
     ),
     Claim(
         "SJ2012-sec5c-ie-differences-insignificant",

@@ -15,8 +15,8 @@ import sympy as sp
 
 from carousel_theory import symbols
 from carousel_theory.claim import Claim, Status, Verdict
-from carousel_theory.claims._common import DIGITS, SIMULATION_N, six_digits
-from carousel_theory.derivations.tim2014_flicker_noise import (
+from carousel_theory.claims._common import DIGITS, SIMULATION_N, simplifies_to_zero, six_digits
+from carousel_theory.flicker_asymptotics import (
     AVERAGED_GROWTH_AT_HALF,
     AVERAGED_LOG_LOWER_BOUND,
     AVERAGED_LOG_UPPER_BOUND,
@@ -51,8 +51,8 @@ def _check_logarithmic() -> Verdict:
     N = SIMULATION_N
     j = sp.Symbol("j", integer=True, positive=True)
     increasing, decreasing = log_growth_envelopes()
-    envelopes = (
-        sp.simplify(increasing - 1 / (4 * j * (j - 1))) == 0 and sp.simplify(decreasing + 1 / (4 * j**2)) == 0
+    envelopes = simplifies_to_zero(increasing - 1 / (4 * j * (j - 1))) and simplifies_to_zero(
+        decreasing + 1 / (4 * j**2)
     )
     growth = sp.lambdify(symbols.k, AVERAGED_GROWTH_AT_HALF, "mpmath")
     lower = sp.lambdify((symbols.N, symbols.k), AVERAGED_LOG_LOWER_BOUND, "mpmath")
