@@ -4,6 +4,11 @@ experiment claims of TIM 2014 compute."""
 
 from __future__ import annotations
 
+import ast
+import importlib
+import inspect
+import pkgutil
+import re
 from fractions import Fraction
 
 import mpmath
@@ -37,6 +42,90 @@ def test_claim_refuses_an_unknown_paper_and_a_mismatched_id():
         Claim("IEEE1999-x", "IEEE1999", "§I", "a claim", lambda: Verdict(Status.VERIFIED, ""))
     with pytest.raises(ValueError, match="must start with the paper key"):
         Claim("SJ2012-x", "TIM2014", "§I", "a claim", lambda: Verdict(Status.VERIFIED, ""))
+
+
+#: The claim modules, one per paper section (the renderings module holds the claims about the text of
+#: TIM 2014 itself), and the id prefixes each one owns: no prefix belongs to two modules.
+SECTION_MODULES = {
+    "sj2012_sec1_introduction": ("SJ2012-sec1-",),
+    "sj2012_sec3_noise_processes": (
+        "SJ2012-eq1-",
+        "SJ2012-eq2-",
+        "SJ2012-eq3-",
+        "SJ2012-eq4-",
+        "SJ2012-sec3",
+    ),
+    "sj2012_sec4_predictors": ("SJ2012-eq6-", "SJ2012-eq7-", "SJ2012-eq8-", "SJ2012-sec4"),
+    "sj2012_sec5_experiments": ("SJ2012-sec5", "SJ2012-table1-"),
+    "tim2014_abstract_and_conclusions": ("TIM2014-abstract-", "TIM2014-secVI-"),
+    "tim2014_renderings": ("TIM2014-render-",),
+    "tim2014_sec1_introduction": ("TIM2014-secI-",),
+    "tim2014_sec2_error_processes": (
+        "TIM2014-eq1-",
+        "TIM2014-eq2-",
+        "TIM2014-eq3-",
+        "TIM2014-secIIA-",
+        "TIM2014-secIIB-",
+        "TIM2014-secIIC-",
+        "TIM2014-secIID-",
+    ),
+    "tim2014_sec3_carouseling": (
+        *(f"TIM2014-eq{n}-" for n in range(4, 19)),
+        "TIM2014-secIIIA-",
+        "TIM2014-secIIIB-",
+        "TIM2014-secIIIC-",
+    ),
+    "tim2014_sec3d_flicker_noise": ("TIM2014-eq19-", "TIM2014-secIIID-", "TIM2014-fig2-"),
+    "tim2014_sec4_constant_allan_variance": (
+        "TIM2014-alg1-",
+        "TIM2014-table2-",
+        "TIM2014-sec4-",
+        *(f"TIM2014-eq{n}-" for n in range(20, 33)),
+    ),
+    "tim2014_sec5ab_simulations": ("TIM2014-secVA-", "TIM2014-secVB-"),
+    "tim2014_sec5c_static_test": ("TIM2014-secVC-",),
+    "tim2014_sec5d_field_test": ("TIM2014-secVD-",),
+}
+
+
+def _claim_modules():
+    import carousel_theory.claims as package
+
+    names = sorted(
+        info.name for info in pkgutil.iter_modules(package.__path__) if not info.name.startswith("_")
+    )
+    return {name: importlib.import_module(f"carousel_theory.claims.{name}") for name in names}
+
+
+def test_one_module_per_section_and_no_overlap():
+    modules = _claim_modules()
+    assert sorted(modules) == sorted(SECTION_MODULES)
+    prefixes = [prefix for owned in SECTION_MODULES.values() for prefix in owned]
+    assert not [p for p in prefixes for q in prefixes if p != q and p.startswith(q)], "overlapping prefixes"
+    for name, module in modules.items():
+        for claim in module.CLAIMS:
+            assert claim.id.startswith(SECTION_MODULES[name]), f"{claim.id} does not belong in {name}"
+
+
+@pytest.mark.parametrize("name", sorted(SECTION_MODULES))
+def test_every_claim_module_follows_one_convention(name):
+    """``__all__ = ["CLAIMS"]``; every function private (``_check_*`` and helpers); claims built with
+    ``Claim(...)``; closed forms from the library, never from a derivation document."""
+    module = importlib.import_module(f"carousel_theory.claims.{name}")
+    source = inspect.getsource(module)
+    tree = ast.parse(source)
+    assert module.__all__ == ["CLAIMS"], name
+    assert all(isinstance(claim, Claim) for claim in module.CLAIMS), name
+    functions = [node.name for node in tree.body if isinstance(node, ast.FunctionDef)]
+    assert [f for f in functions if not f.startswith("_")] == [], f"{name}: public functions"
+    imported = [node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)]
+    assert not [m for m in imported if m.startswith("carousel_theory.derivations")], name
+    assert not [
+        m
+        for m in imported
+        if m.startswith("carousel_theory.claims.") and not m.split(".")[-1].startswith("_")
+    ]
+    assert not re.search(r"(?<!\w)_claim\(", source), f"{name}: claims are built with Claim(...)"
 
 
 # --- carousel-theory check --check ---------------------------------------------------------------

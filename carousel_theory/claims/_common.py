@@ -5,6 +5,7 @@ TIM 2014 eq. (3) and SJ 2012 eq. (3), (6), and the verdict of a claim whose evid
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from fractions import Fraction
 
 import mpmath
@@ -24,6 +25,7 @@ __all__ = [
     "cumulative_sum_matrix",
     "exact_mpf",
     "exact_sequence",
+    "figure_1_not_public",
     "not_checkable",
     "phi",
     "psi",
@@ -197,3 +199,14 @@ def check_rrw_future_dependence(t: int = 3, size: int = 6) -> Verdict:
             "\\sqrt{s/t}."
         ),
     )
+
+
+def figure_1_not_public(what: str) -> Callable[[], Verdict]:
+    def check() -> Verdict:
+        return Verdict(
+            Status.NOT_CHECKABLE,
+            f"{what}: read from Fig. 1, whose curves are not in the text rendering and whose data "
+            "(AIST-350, ADXRS150 recordings) are not public.",
+        )
+
+    return check

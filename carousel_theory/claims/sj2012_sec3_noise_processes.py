@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable
 from fractions import Fraction
 
 import numpy as np
@@ -29,6 +28,7 @@ from carousel_theory.claims._common import (
     EXAMPLE_RECORD,
     check_rrw_future_dependence,
     exact_sequence,
+    figure_1_not_public,
     phi,
     psi,
     ratio_is,
@@ -238,17 +238,6 @@ def _check_bias_instability_measures_flicker(length: int = 2**15) -> Verdict:
     return Verdict(Status.REFUTED, f"minimum / plateau ratios {ratios}")
 
 
-def _figure_1_not_public(what: str) -> Callable[[], Verdict]:
-    def check() -> Verdict:
-        return Verdict(
-            Status.NOT_CHECKABLE,
-            f"{what}: read from Fig. 1, whose curves are not in the text rendering and whose data "
-            "(AIST-350, ADXRS150 recordings) are not public.",
-        )
-
-    return check
-
-
 CLAIMS: list[Claim] = [
     Claim(
         "SJ2012-eq3-fractional-difference",
@@ -280,7 +269,7 @@ CLAIMS: list[Claim] = [
         "SJ2012",
         "§III-A, Fig. 1",
         "For both data sets of Fig. 1 an averaging time of 1000 seconds would be a reasonable choice.",
-        _figure_1_not_public("1000 s averaging time"),
+        figure_1_not_public("1000 s averaging time"),
     ),
     Claim(
         "SJ2012-sec3b-white-negative-slope",

@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable
 
 import numpy as np
 
 from carousel_theory.claim import Claim, Status, Verdict
+from carousel_theory.claims._common import figure_1_not_public
 from carousel_theory.prediction import (
     METHODS,
     BiasModel,
@@ -348,17 +348,6 @@ def _table1_and_example_claims() -> list[Claim]:
     return claims
 
 
-def _figure_1_not_public(what: str) -> Callable[[], Verdict]:
-    def check() -> Verdict:
-        return Verdict(
-            Status.NOT_CHECKABLE,
-            f"{what}: read from Fig. 1, whose curves are not in the text rendering and whose data "
-            "(AIST-350, ADXRS150 recordings) are not public.",
-        )
-
-    return check
-
-
 CLAIMS: list[Claim] = [
     Claim(
         "SJ2012-sec5-rsse-definition",
@@ -455,7 +444,7 @@ CLAIMS: list[Claim] = [
         "§V-A, Fig. 1",
         "Temperature-controlled gyro: no RRW slope at averaging times below 10^5 s; Allan variance almost "
         "constant above 10^2 s.",
-        _figure_1_not_public("10^5 s and 10^2 s"),
+        figure_1_not_public("10^5 s and 10^2 s"),
     ),
     Claim(
         "SJ2012-sec5a-fig1-rrw-above-4e3",
@@ -463,6 +452,6 @@ CLAIMS: list[Claim] = [
         "§V-A, Fig. 1",
         "The gyro without temperature conditioning: Allan variance increases above approx. 4·10^3 s because "
         "of RRW.",
-        _figure_1_not_public("4·10^3 s"),
+        figure_1_not_public("4·10^3 s"),
     ),
 ]
