@@ -9,7 +9,7 @@ from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from carousel_theory.claim import PAPERS, Claim, Status, Verdict
+from carousel_theory.claim import FINDINGS, PAPERS, STATUS_MEANINGS, Claim, Status, Verdict
 from carousel_theory.progress import progress
 
 __all__ = ["CheckedClaim", "render_json", "render_markdown", "run_checks", "summary"]
@@ -51,10 +51,10 @@ def render_markdown(checked: Sequence[CheckedClaim]) -> str:
         "# Paper check",
         "",
         "Every claim of the two papers, with the status its check computed when this file was written.",
-        "Statuses: **proved** (exact symbolic identity for all parameter values), **verified** (≥ 50 digits,",
-        "or exhaustive over a stated finite range), **consistent** (Monte Carlo within a stated bound),",
-        "**refuted** (counterexample), **erratum** (printed form wrong, corrected form given),",
-        "**not checkable** (with the reason).",
+        "",
+        "| status | meaning |",
+        "|---|---|",
+        *(f"| **{status.value}** | {meaning} |" for status, meaning in STATUS_MEANINGS.items()),
         "",
         "| status | claims |",
         "|---|---|",
@@ -76,9 +76,12 @@ def render_markdown(checked: Sequence[CheckedClaim]) -> str:
                 f"**{verdict.status.value}** | {_escape(verdict.evidence)} | "
                 f"{_escape(verdict.corrected or '')} |"
             )
-    errata = [item for item in checked if item.verdict.status in (Status.ERRATUM, Status.REFUTED)]
+    errata = sorted(
+        (item for item in checked if item.verdict.status in FINDINGS),
+        key=lambda item: (FINDINGS.index(item.verdict.status), item.claim.id),
+    )
     if errata:
-        lines += ["", "## Errata and refutations", ""]
+        lines += ["", "## Findings: errata, refutations, inconsistencies, qualifications, typography", ""]
         for item in errata:
             corrected = f" Corrected: {item.verdict.corrected}" if item.verdict.corrected else ""
             lines.append(
@@ -112,9 +115,9 @@ def summary(checked: Sequence[CheckedClaim]) -> str:
         if counts:
             parts = ", ".join(f"{counts[s]} {s.value}" for s in Status if counts[s])
             lines.append(f"{paper}: {sum(counts.values())} claims — {parts}")
-    errata = [item for item in checked if item.verdict.status in (Status.ERRATUM, Status.REFUTED)]
+    errata = [item for item in checked if item.verdict.status in FINDINGS]
     if errata:
-        lines.append("errata and refutations:")
+        lines.append("findings (errata, refutations, inconsistencies, qualifications, typography):")
         lines += [
             f"  {item.claim.id} ({item.claim.location}): {item.verdict.status.value}" for item in errata
         ]

@@ -12,8 +12,6 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from carousel_theory import graycode_properties
-from carousel_theory.claim import Status
-from carousel_theory.claims import tim2014_section_4
 from carousel_theory.cli import main
 from carousel_theory.graycode import gray_matrix, overlapping_allan_variance_exact
 from carousel_theory.graycode_properties import PROPERTIES, _Workspace, check_order, check_up_to
@@ -175,30 +173,6 @@ def test_invalid_calls(call, error, message):
 
 
 # --- claims --------------------------------------------------------------------------------------------
-
-EXPECTED_STATUS = {
-    "TIM2014-eq23-stochastic-differences": Status.ERRATUM,
-    "TIM2014-sec4-x-dimension": Status.ERRATUM,
-    "TIM2014-sec4-kkt-columns-rule21": Status.ERRATUM,
-    "TIM2014-sec4-mvue": Status.ERRATUM,
-    "TIM2014-sec4-stationary": Status.REFUTED,
-    "TIM2014-eq20-unbiased-without-one-over-tau": Status.REFUTED,
-    "TIM2014-eq22-period-four": Status.PROVED,
-    "TIM2014-eq31-pseudoinverse-all-n": Status.PROVED,
-    "TIM2014-sec4-allan-not-mvue": Status.PROVED,
-    "TIM2014-sec4-kkt-diagonal": Status.PROVED,
-}
-
-
-def test_claims_reach_their_verdicts():
-    for claim in tim2014_section_4.CLAIMS:
-        verdict = claim.check()
-        assert verdict.status is EXPECTED_STATUS.get(claim.id, Status.VERIFIED), (claim.id, verdict)
-        assert (verdict.corrected is not None) == (verdict.status in (Status.ERRATUM, Status.REFUTED)), (
-            claim.id
-        )
-        assert len(verdict.evidence) < 500
-        assert verdict == claim.check()  # deterministic
 
 
 def test_derivation_document_is_deterministic_and_committed():

@@ -5,6 +5,7 @@ below) and ``carouseling-tim2014-alt-rendering.md`` (*alternative*). A word-by-w
 the two finds the disagreements listed here; every other token (each number, equation and table
 value) is the same in both. Each claim quotes the two readings and its check evaluates both,
 exactly or at 50 digits, against the rest of the paper, which both renderings print identically.
+These claims are about the text, not a section; the mathematics of each section is in its own module.
 """
 
 from __future__ import annotations
@@ -18,27 +19,22 @@ import numpy as np
 import sympy as sp
 
 from carousel_theory.claim import Claim, Status, Verdict
+from carousel_theory.claims._common import DIGITS, cumulative_sum_matrix, simplifies_to_zero
 
 __all__ = ["CLAIMS"]
 
 PAPER = "TIM2014"
-#: Working precision (significant digits) of the 50-digit checks, and the tolerance tied to it.
-DIGITS = 50
+
+
 TOLERANCE = mpmath.mpf(10) ** (-(DIGITS - 5))
+
+
 #: Exhaustive ranges of the exact checks: every N (samples per bin) in 1..EXACT_N_MAX and, at 50
 #: digits, every N in 1..DECIMAL_N_MAX.
 EXACT_N_MAX = 12
+
+
 DECIMAL_N_MAX = 40
-
-
-# ---------------------------------------------------------------------------------------------
-# Exact building blocks of TIM 2014 §III-C, written out here from their definitions (10)–(13) so
-# that each rendering's reading can be evaluated.
-
-
-def _cumulative_sum_matrix(size: int) -> sp.Matrix:
-    """The lower-triangular matrix of ones, R of eq. (10) (and R₂ of eq. (11) for size 2N)."""
-    return sp.Matrix(size, size, lambda row, column: 1 if column <= row else 0)
 
 
 def _averaging_vector(N: int) -> sp.Matrix:
@@ -63,10 +59,6 @@ def _quadratic_form_mp(left: list, matrix: np.ndarray, right: list) -> mpmath.mp
     )
 
 
-# ---------------------------------------------------------------------------------------------
-# Eq. (11), (15): the ones block of R₂.
-
-
 def _check_ones_block() -> Verdict:
     # The printed right-hand side of (15), identical in both renderings.
     N = sp.Symbol("N", positive=True, integer=True)
@@ -74,8 +66,8 @@ def _check_ones_block() -> Verdict:
     printed_second = (2 * N**3 + 3 * N**2 + N) / (6 * N**2) + N
     counterexample = None
     for size in range(1, EXACT_N_MAX + 1):
-        R = _cumulative_sum_matrix(size)
-        R2 = _cumulative_sum_matrix(2 * size)
+        R = cumulative_sum_matrix(size)
+        R2 = cumulative_sum_matrix(2 * size)
         ones = sp.ones(size, size)
         identity = sp.eye(size)
         # The partition (11) of the 2N × 2N cumulative-sum matrix: its lower-left block is all ones.
@@ -111,10 +103,6 @@ def _check_ones_block() -> Verdict:
         corrected="R₂ = [[R, 𝕆], [𝕀, R]] with 𝕆, 𝕀 the N×N matrices of zeros and ones, distinct from the "
         "identity I in cov q = σ_q² I (as in the primary rendering)",
     )
-
-
-# ---------------------------------------------------------------------------------------------
-# Eq. (17): the off-diagonal entry.
 
 
 def _check_eq17_off_diagonal() -> Verdict:
@@ -156,21 +144,17 @@ def _check_eq17_scalar_zero() -> Verdict:
     # Exact at N = 4: s = (1/4)[1, 0, −1, 0]; the off-diagonal entry is a 1×1 quantity (a scalar).
     size = 4
     s = sp.Matrix([sp.sin(2 * sp.pi * i / size) / size for i in range(1, size + 1)])
-    entry = s.T * _cumulative_sum_matrix(size) * sp.ones(size, size).T * s
-    if entry.shape != (1, 1) or sp.simplify(entry[0]) != 0:
+    entry = s.T * cumulative_sum_matrix(size) * sp.ones(size, size).T * s
+    if entry.shape != (1, 1) or not simplifies_to_zero(entry[0]):
         return Verdict(Status.FAILED, f"sᵀR𝕀ᵀs at N = 4 is {entry}, not the scalar 0")
     return Verdict(
-        Status.ERRATUM,
+        Status.TYPOGRAPHIC,
         "Each entry of the 2×2 matrix (17) is a 1×1 quadratic form (exactly sᵀR𝕀ᵀs = 0 at N = 4), so the "
         "zeros "
         "are the scalar 0 (alternative rendering), not the bold 0 that the text after (14) defines as an N×1 "
         "vector (primary rendering).",
         corrected="σ_q² [[sᵀRRᵀs, 0], [0, sᵀRRᵀs]] with scalar zeros",
     )
-
-
-# ---------------------------------------------------------------------------------------------
-# Algorithm 1, Table I and Table II (TIM 2014 §IV), evaluated with carousel_theory.graycode.
 
 
 def _halves(values) -> list[Fraction]:
@@ -182,6 +166,8 @@ def _halves(values) -> list[Fraction]:
 
 
 H = Fraction(1, 2)
+
+
 #: Table I as printed in the alternative rendering: S₂, S₂⊗[1 1], a_{1…4}, S₄, S₄⊗[1 1], a_{1…8}, S₈.
 TABLE_I_ALTERNATIVE: dict[str, list[Any]] = {
     "S_2": [-H, H],
@@ -192,6 +178,8 @@ TABLE_I_ALTERNATIVE: dict[str, list[Any]] = {
     "a_1…8": [-H, H, H, -H, -H, H, H, -H],
     "S_8": [-3 * H, -H, H, -H, H, 3 * H, H, -H],
 }
+
+
 #: The entries the primary rendering's garbled Table I still shows unambiguously: its S₈ row and,
 #: read as stacked pairs (upper over lower) in the merged rows, these columns.
 TABLE_I_PRIMARY_READABLE: dict[str, list[Any]] = {
@@ -241,7 +229,7 @@ def _check_table_one() -> Verdict:
             Status.FAILED, "the readable entries of the primary rendering's Table I contradict Algorithm 1"
         )
     return Verdict(
-        Status.ERRATUM,
+        Status.TYPOGRAPHIC,
         "All seven rows of the alternative rendering's Table I equal Algorithm 1's trace (S_8 = [−3/2, "
         "−1/2, 1/2, "
         "−1/2, 1/2, 3/2, 1/2, −1/2] = K·1). The primary rendering's table merges the ⊗[1 1] and a rows into "
@@ -275,10 +263,10 @@ def _check_table_two() -> Verdict:
     # The primary rendering prints the 3rd and 4th entries of the middle rows as the fractions
     # (x₁/2)/(x₂/2) and −(x₁/2)/(−x₂/2): read literally both equal ±x₁/x₂, not entries of K x.
     literal_third, literal_fourth = (half * x1) / (half * x2), -(half * x1) / (-half * x2)
-    if any(sp.simplify(v - literal_third) == 0 or sp.simplify(v - literal_fourth) == 0 for v in R4):
+    if any(simplifies_to_zero(v - literal_third) or simplifies_to_zero(v - literal_fourth) for v in R4):
         return Verdict(Status.FAILED, "the primary rendering's literal fractions match an entry of K x")
     return Verdict(
-        Status.ERRATUM,
+        Status.TYPOGRAPHIC,
         "The alternative rendering's Table II equals K x exactly (K of eq. (24) from Algorithm 1): R_4 = "
         "[−x₁/2 − x₂/2, −x₁/2 + x₂/2, x₁/2 + x₂/2, x₁/2 − x₂/2]. The primary rendering prints the middle "
         "rows "
@@ -296,16 +284,12 @@ def _check_algorithm_loop() -> Verdict:
     if any(length != 2**n for n, length in lengths.items()):
         return Verdict(Status.FAILED, f"Algorithm 1 lengths {lengths} are not 2^n")
     return Verdict(
-        Status.ERRATUM,
+        Status.TYPOGRAPHIC,
         "Looping i = 2, …, n (n − 1 doublings of S_2) gives the stated output length 2^n for every n = 2 … "
         "12; "
         "the primary rendering's 'i = 2,, n' has lost the ellipsis, the alternative is right.",
         corrected="for i = 2, …, n do",
     )
-
-
-# ---------------------------------------------------------------------------------------------
-# Eq. (28)–(30) and the unbiased estimator.
 
 
 def _check_difference_matrix_symbol() -> Verdict:
@@ -328,7 +312,7 @@ def _check_difference_matrix_symbol() -> Verdict:
     if from_28 != printed_29 or printed_29 * K * K.T * printed_29.T != printed_30:
         return Verdict(Status.FAILED, "(28) at τ = 1 does not give (29), or A K Kᵀ Aᵀ differs from (30)")
     return Verdict(
-        Status.ERRATUM,
+        Status.TYPOGRAPHIC,
         "(28) at τ = 1 on R_4 gives exactly the matrix A of (29), and A K Kᵀ Aᵀ = "
         "[[1,0,−1],[0,1,0],[−1,0,1]] = "
         "(30); the paper defines only A, so the primary rendering's 'A y' is right and the alternative's 'Ā "
@@ -381,20 +365,23 @@ def _check_unbiased_factor() -> Verdict:
     )
 
 
-# ---------------------------------------------------------------------------------------------
-# Table III: both renderings' transcriptions, as printed.
-
 #: Table III's value cells as each rendering prints them (LaTeX source), in the order
 #: x-gyro (σ_WN², σ_q², bias instability), y-gyro (the same).
 TABLE_III_PRIMARY = (
     r"$3 \cdot 10^{-7} \\ 3 \cdot 10^{-10} \\ 1 \cdot 10^{-5}$",
     r"$1 \cdot 10^{-7} \\ 2 \cdot 10^{-10} \\ 6 \cdot 10^{-5}$",
 )
+
+
 TABLE_III_ALTERNATIVE = (
     r"$3 \cdot 10^{-7}$ $3 \cdot 10^{-10}$ $1 \cdot 10^{-5}$",
     r"$1 \cdot 10^{-7}$ $2 \cdot 10^{-10}$ $6 \cdot 10^{-5}$",
 )
+
+
 TABLE_III_UNITS_PRIMARY = r"$(rad/s)^2$ $(rad/s)^2/s$ rad/s"
+
+
 TABLE_III_UNITS_ALTERNATIVE = "(rad/s) <sup>2</sup> | (rad/s) <sup>2</sup> /s | rad/s"
 
 
@@ -430,9 +417,6 @@ def _check_table_three() -> Verdict:
         "only in layout (the primary's header reads 'Va Value').",
     )
 
-
-# ---------------------------------------------------------------------------------------------
-# Differences without mathematical content, listed so that the comparison is complete.
 
 WORDING_DIFFERENCES = (
     ("§I", "'have been studies' / 'highquality'", "'have been studied' / 'high-quality'", "alternative"),

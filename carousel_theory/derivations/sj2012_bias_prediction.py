@@ -152,7 +152,7 @@ def _section_population() -> list[str]:
     assert sp.simplify(integral - 2 * sp.sqrt(sp.pi)) == 0
     integral3 = sp.integrate((sp.exp(-u) - 1 + u) * u ** sp.Rational(-5, 2), (u, 0, sp.oo))
     assert sp.simplify(integral3 - 4 * sp.sqrt(sp.pi) / 3) == 0
-    from carousel_theory.claims.sj2012_bias_prediction import TABLE1_SIMULATED, _table1_analysis
+    from carousel_theory.claims.sj2012_sec5_experiments import TABLE1_SIMULATED, _table1_analysis
 
     populations, _, scale, scale_error, chi_square = _table1_analysis()
     lines = [

@@ -3,7 +3,8 @@ static experiment of §V-C — per-sample parameters, bin variances, 2σ bands, 
 exceedance count and the Allan-deviation floor.
 
 The numbers come from the closed forms of :mod:`carousel_theory.formulas` through the helpers of
-:mod:`carousel_theory.claims.tim2014_experiments`, which also hold the verdicts; this document shows
+:mod:`carousel_theory.claims._tim2014_static_model`; the verdicts are in
+:mod:`carousel_theory.claims.tim2014_sec5c_static_test`; this document shows
 the formulas and the values side by side.
 """
 
@@ -12,23 +13,23 @@ from __future__ import annotations
 import mpmath
 import sympy as sp
 
-from carousel_theory.claims.tim2014_experiments import (
+from carousel_theory.claims._tim2014_static_model import (
     DURATION,
     REPORTED_EXCEEDANCE,
     SAMPLE_RATE,
     SAMPLES_PER_BIN,
     TABLE_III,
-    _allan_minimum_white_rrw,
-    _angle_standard_deviations,
-    _averaged_rrw_sum_of_covariances,
-    _band_variances,
-    _bin_duration,
-    _binomial_interval,
-    _binomial_tail_at_least,
-    _flicker_floor_factor,
-    _number_of_bins,
-    _per_sample,
-    _standard_normal_two_sided_tail,
+    allan_minimum_white_rrw,
+    angle_standard_deviations,
+    averaged_rrw_sum_of_covariances,
+    band_variances,
+    bin_duration,
+    binomial_interval,
+    binomial_tail_at_least,
+    flicker_floor_factor,
+    number_of_bins,
+    per_sample,
+    standard_normal_two_sided_tail,
 )
 from carousel_theory.derivations import Document
 from carousel_theory.formulas import formula
@@ -56,8 +57,8 @@ def _parameters() -> list[str]:
     out = ["## 1. Table III and the per-sample parameters\n"]
     out.append(
         f"§V-C: f_s = {SAMPLE_RATE} Hz, N = {SAMPLES_PER_BIN} samples per bin, so "
-        f"$T = N/f_s = {_rational(_bin_duration())}$ s, and one hour holds "
-        f"$K = {DURATION}/T = {_number_of_bins()}$ bins. Table III gives $\\sigma_{{WN}}^2$ at τ = 1 s "
+        f"$T = N/f_s = {_rational(bin_duration())}$ s, and one hour holds "
+        f"$K = {DURATION}/T = {number_of_bins()}$ bins. Table III gives $\\sigma_{{WN}}^2$ at τ = 1 s "
         "((rad/s)², the variance of a 1-s mean) and $\\sigma_q^2$ ((rad/s)²/s, the growth rate of the "
         "RRW variance). A 1-s mean holds f_s samples, and the RRW grows by σ_q² per second, so the "
         "discrete model of §II has\n"
@@ -72,7 +73,7 @@ def _parameters() -> list[str]:
         "|---|---|---|---|---|---|",
     ]
     for gyro in ("x", "y"):
-        white, rrw = _per_sample(gyro)
+        white, rrw = per_sample(gyro)
         table = TABLE_III[gyro]
         rows.append(
             f"| {gyro} | {float(table['white']):.0e} | {float(table['rrw']):.0e} | "
@@ -83,7 +84,7 @@ def _parameters() -> list[str]:
 
 
 def _bins() -> list[str]:
-    N, K = SAMPLES_PER_BIN, _number_of_bins()
+    N, K = SAMPLES_PER_BIN, number_of_bins()
     out = ["## 2. Predicted variance of one bin\n"]
     white_average, rrw_average = formula("white_average_var"), formula("rrw_average_var")
     white_carousel = formula("white_carousel_var")
@@ -124,7 +125,7 @@ def _bins() -> list[str]:
             "With the Table III parameters (white + RRW; 1/f excluded as in §V-C), the predicted 2σ "
             "half-widths $2\\sqrt{\\operatorname{Var}}$ of Fig. 7 are (rad/s):\n"
         )
-        bands = _band_variances()
+        bands = band_variances()
         rows = [
             "| estimate | Var, bin 1 | 2σ, bin 1 | Var, bin 1800 | 2σ, bin 1800 |",
             "|---|---|---|---|---|",
@@ -144,7 +145,7 @@ def _bins() -> list[str]:
 
 def _angles() -> list[str]:
     out = ["## 3. The integrated angle after one hour\n"]
-    total, _, _ = _averaged_rrw_sum_of_covariances()
+    total, _, _ = averaged_rrw_sum_of_covariances()
     out.append(
         "The angle is $T \\sum_{k=1}^{K} \\hat\\omega_k$. Averaged white bins are independent; averaged RRW "
         "bins are correlated, and SymPy sums `rrw_average_cov` over all pairs (unit increments):\n"
@@ -159,7 +160,7 @@ def _angles() -> list[str]:
         "deviations (degrees):\n"
     )
     with mpmath.workdps(DIGITS):
-        sigma = _angle_standard_deviations()
+        sigma = angle_standard_deviations()
         rows = ["| estimate | white | RRW | total |", "|---|---|---|---|"]
         for name, parts in sigma.items():
             rows.append(
@@ -177,12 +178,12 @@ def _angles() -> list[str]:
 
 def _exceedance() -> list[str]:
     out = ["## 4. How many carouselled bins leave the 2σ band\n"]
-    trials = _number_of_bins()
+    trials = number_of_bins()
     with mpmath.workdps(DIGITS):
-        probability = _standard_normal_two_sided_tail(mpmath.mpf(2))
-        lowest, highest = _binomial_interval(trials, probability, mpmath.mpf("0.99"))
+        probability = standard_normal_two_sided_tail(mpmath.mpf(2))
+        lowest, highest = binomial_interval(trials, probability, mpmath.mpf("0.99"))
         observed = int(REPORTED_EXCEEDANCE * trials)
-        p_value = _binomial_tail_at_least(observed, trials, probability)
+        p_value = binomial_tail_at_least(observed, trials, probability)
         out.append(
             "Under the model the carouselled bins are independent Gaussians, so each leaves ±2σ with "
             f"$p = P(|Z| > 2) = \\operatorname{{erfc}}(\\sqrt2) = {_number(probability)}$ and the count "
@@ -220,7 +221,7 @@ def _allan_floor() -> list[str]:
         "$\\sqrt{\\min\\sigma_A^2}/\\sqrt{2\\ln2/\\pi}$:\n"
     )
     with mpmath.workdps(DIGITS):
-        factor = _flicker_floor_factor()
+        factor = flicker_floor_factor()
         below_implied: list[str] = []
         below_floor: list[str] = []
         rows = [
@@ -228,7 +229,7 @@ def _allan_floor() -> list[str]:
             "|---|---|---|---|---|",
         ]
         for gyro in ("x", "y"):
-            tau_star, floor = _allan_minimum_white_rrw(gyro)
+            tau_star, floor = allan_minimum_white_rrw(gyro)
             values = {white: sp.Rational(TABLE_III[gyro]["white"]), rrw: sp.Rational(TABLE_III[gyro]["rrw"])}
             symbolic_floor = mpmath.mpf(str(sp.N(minimum.subs(values), DIGITS)))
             assert abs(symbolic_floor - floor) <= mpmath.mpf(10) ** (-DIGITS + 15)
@@ -256,7 +257,7 @@ def _build() -> str:
         "The recording of §V-C is not public, so the measured numbers cannot be recomputed; what follows "
         "is what the paper's own noise model (Table III, white noise + RRW, 1/f neglected as in §V-C) "
         "predicts for each of them, at 50 digits, shown to 6 significant digits. The verdicts live in "
-        "`carousel_theory/claims/tim2014_experiments.py` (run `carousel-theory check --only "
+        "`carousel_theory/claims/tim2014_sec5c_static_test.py` (run `carousel-theory check --only "
         "TIM2014-secV`).\n"
     ]
     out += _parameters()
