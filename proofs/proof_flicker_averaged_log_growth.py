@@ -24,7 +24,7 @@ from fractions import Fraction
 import mpmath
 import sympy as sp
 
-from carousel_theory.derivations.tim2014_flicker_noise import fractional_coefficient
+from carousel_theory.flicker_asymptotics import fractional_coefficient
 from carousel_theory.processes import fractional_coefficients_exact
 from carousel_theory.propagation import flicker_bin_variances_high_precision
 from carousel_theory.symbols import d

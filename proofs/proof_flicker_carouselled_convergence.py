@@ -24,7 +24,7 @@ import mpmath
 import sympy as sp
 
 from carousel_theory import symbols
-from carousel_theory.derivations.tim2014_flicker_noise import (
+from carousel_theory.flicker_asymptotics import (
     CAROUSELLED_TAIL_BOUND_HALF,
     fractional_coefficient,
 )

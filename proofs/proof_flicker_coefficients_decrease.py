@@ -12,7 +12,7 @@ j^{d−1} → 0 for d < 1. Step 3: the opposite pairs of (13).
 
 import sympy as sp
 
-from carousel_theory.derivations.tim2014_flicker_noise import fractional_coefficient
+from carousel_theory.flicker_asymptotics import fractional_coefficient
 from carousel_theory.symbols import d
 
 j = sp.Symbol("j", integer=True, positive=True)

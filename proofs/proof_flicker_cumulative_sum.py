@@ -15,7 +15,7 @@ from fractions import Fraction
 
 import sympy as sp
 
-from carousel_theory.derivations.tim2014_flicker_noise import cumulative_coefficient, fractional_coefficient
+from carousel_theory.flicker_asymptotics import cumulative_coefficient, fractional_coefficient
 from carousel_theory.processes import fractional_coefficients_exact
 from carousel_theory.symbols import d
 

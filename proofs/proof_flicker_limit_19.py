@@ -16,7 +16,7 @@ so by continuity of exp the ratio tends to 1 and the limit is 1/Γ(d). Step 4 ch
 import mpmath
 import sympy as sp
 
-from carousel_theory.derivations.tim2014_flicker_noise import fractional_coefficient, limit_19_log_series
+from carousel_theory.flicker_asymptotics import fractional_coefficient, limit_19_log_series
 from carousel_theory.symbols import d
 
 i = sp.Symbol("i", positive=True)
