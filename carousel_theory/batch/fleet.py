@@ -179,10 +179,15 @@ class _FleetRun:
         return self._on_compute(item, result)
 
     def _restart(self, worker: str) -> None:
-        """Restart the worker of a cancelled task (a Python thread cannot be stopped otherwise)."""
-        # Without a nanny to restart it, the worker stays busy until the task ends.
-        with contextlib.suppress(Exception):
-            self.client.restart_workers([worker], raise_for_error=False)
+        """Restart the worker of a cancelled task (a Python thread cannot be stopped otherwise), in the
+        background: the fleet goes on on the other workers meanwhile."""
+
+        def restart() -> None:
+            # Without a nanny to restart it, the worker stays busy until the task ends.
+            with contextlib.suppress(Exception):
+                self.client.restart_workers([worker], raise_for_error=False)
+
+        threading.Thread(target=restart, name=f"restart {worker}", daemon=True).start()
 
     def _expire(self) -> list[list[BatchRow]]:
         timeout = self.job.task_timeout
@@ -206,7 +211,9 @@ class _FleetRun:
     def finished(self) -> Iterator[list[BatchRow]]:
         """Submit the fleet and yield the rows of each recording as soon as all of them are back."""
         for path in self.job.paths:
-            self._submit(hash_stage, _Pending(str(path), "hash"), str(path), self.job.options, self.job.per_axis)
+            self._submit(
+                hash_stage, _Pending(str(path), "hash"), str(path), self.job.options, self.job.per_axis
+            )
         while self.pending:
             batch = self.queue.next_batch(block=False)
             for future in batch:

@@ -4,7 +4,8 @@ Each task is a function ``(path, options, axis) -> list[BatchRow]`` over today's
 :func:`carousel_theory.data.load_recording`, :func:`carousel_theory.allan.allan_variance`,
 :func:`carousel_theory.fitting.fit_noise_model` and :func:`carousel_theory.closed_loop.run_loop` — the
 same calls the single-file commands ``allan``, ``fit`` and ``loop`` make, with the same options. A change
-of those APIs touches this module only.
+of those APIs touches this module only. The analyses are imported with this module, so a worker imports
+them once, when it first receives a task, outside the time a task is timed against ``--task-timeout``.
 
 ``design`` is not a task yet: no ``design`` command exists. To add it, write ``design_task`` with the
 signature above and add it to :data:`TASKS`; the command line offers every key of :data:`TASKS`.
@@ -20,7 +21,12 @@ from typing import Any
 
 import numpy as np
 
+from carousel_theory.allan import ESTIMATORS, allan_variance
 from carousel_theory.batch.rows import BatchRow
+from carousel_theory.closed_loop import run_loop
+from carousel_theory.data import load_recording
+from carousel_theory.fitting import COMPONENTS, NoiseModel, fit_noise_model
+from carousel_theory.units import bias_instability_from_allan_minimum, rad_per_s_to_deg_per_h
 
 __all__ = ["PER_AXIS_TASKS", "TASKS", "TaskOptions", "check_options", "recording_axes"]
 
@@ -54,8 +60,6 @@ class TaskOptions:
 
 
 def _load(path: str, options: TaskOptions, irregular: str = "refuse") -> Any:
-    from carousel_theory.data import load_recording
-
     return load_recording(
         path,
         columns=dict(options.columns) or None,
@@ -90,9 +94,6 @@ def allan_task(path: str, options: TaskOptions, axis: str | None = None) -> list
     """``carousel-theory allan``: the octave Allan variance of each axis. The row keeps its minimum, the
     τ of the minimum and the bias instability read from it (min σ_A / 0.664, IEEE Std 952); no model is
     fitted, so there are no standard errors."""
-    from carousel_theory.allan import allan_variance
-    from carousel_theory.units import bias_instability_from_allan_minimum, rad_per_s_to_deg_per_h
-
     recording = _load(path, options)
     rows = []
     for name, rates in _selected(recording, axis).items():
@@ -133,8 +134,6 @@ def _fit_fields(fit: Any) -> dict[str, Any]:
 
 def fit_task(path: str, options: TaskOptions, axis: str | None = None) -> list[BatchRow]:
     """``carousel-theory fit``: GLS on the octave Allan variance, one row per axis in field units."""
-    from carousel_theory.fitting import fit_noise_model
-
     recording = _load(path, options)
     tau_range = None
     if options.tau_min is not None or options.tau_max is not None:
@@ -164,9 +163,6 @@ def _relative_root_error(variance: float, error: float) -> float:
 def _loop_axis_fields(model: dict[str, Any], sample_rate: float, length: int) -> dict[str, Any]:
     """Field-unit parameters of one axis of the loop's model (long-run white variance, RRW, bias); the
     bias instability is that model's Allan minimum / 0.664, without a standard error."""
-    from carousel_theory.fitting import NoiseModel
-    from carousel_theory.units import rad_per_s_to_deg_per_h
-
     errors = model.get("standard_errors", {})
     white = float(model["long_run_white_variance_rad2_s2"])
     rrw = float(model["rrw_variance_rad2_s2"])
@@ -191,8 +187,6 @@ def loop_task(path: str, options: TaskOptions, axis: str | None = None) -> list[
     """``carousel-theory loop``: the closed loop on the whole recording (its carouselled bins need the
     axes together, so it is never split); one row per analysed axis with the extended model's
     parameters, the effects found and the misfit before/after (the same on every row of the recording)."""
-    from carousel_theory.closed_loop import run_loop
-
     if axis is not None:
         raise ValueError(f"axis={axis!r}: the loop runs on a whole recording, not on one axis")
     recording = _load(path, options, irregular="keep")
@@ -233,9 +227,6 @@ PER_AXIS_TASKS = frozenset({"allan", "fit"})
 
 def check_options(task: str, options: TaskOptions) -> None:
     """Refuse options the analyses would refuse on every file, once, before the fleet starts."""
-    from carousel_theory.allan import ESTIMATORS
-    from carousel_theory.fitting import COMPONENTS
-
     if task not in TASKS:
         raise ValueError(
             f"task={task!r}: must be one of {sorted(TASKS)} (design joins when a design command exists)"
