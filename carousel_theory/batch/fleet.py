@@ -167,6 +167,8 @@ class _FleetRun:
         )
 
     def _handle(self, item: _Pending, future: Future) -> list[BatchRow] | None:
+        if future.status == "cancelled":  # by the cluster (a restart, a lost scheduler), not by this run
+            return self._failed(item, "worker", "the cluster cancelled the task")
         if future.status == "error":
             error = future.exception()
             name = type(error).__name__
