@@ -8,9 +8,11 @@ error row, so a task never raises into the fleet.
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import sys
 import time
+import warnings
 import zipfile
 from dataclasses import dataclass
 from typing import TextIO
@@ -45,9 +47,11 @@ class ClusterConnection:
 
     @property
     def dashboard(self) -> str | None:
-        """The dashboard's address, when the scheduler runs one (it needs bokeh)."""
+        """The dashboard's address, when the scheduler serves one (its pages need bokeh)."""
         services = self.client.scheduler_info().get("services", {})
-        return self.client.dashboard_link if "dashboard" in services else None
+        if "dashboard" not in services or importlib.util.find_spec("bokeh") is None:
+            return None
+        return str(self.client.dashboard_link)
 
     def close(self) -> None:
         self.client.close()
@@ -70,12 +74,16 @@ def connect(
         raise ValueError(f"workers={workers!r}: must be >= 1")
     cluster = None
     if scheduler is None:
-        cluster = LocalCluster(
-            n_workers=workers or os.cpu_count() or 1,
-            threads_per_worker=1,
-            processes=True,
-            dashboard_address=":8787" if dashboard else None,
-        )
+        with warnings.catch_warnings():
+            # Port 8787 taken: Dask serves the dashboard on a free port instead, printed below.
+            warnings.filterwarnings("ignore", message="Port .* is already in use", category=UserWarning)
+            cluster = LocalCluster(
+                n_workers=workers or os.cpu_count() or 1,
+                threads_per_worker=1,
+                processes=True,
+                # Without a dashboard Dask still opens an HTTP port; ":0" takes a free one.
+                dashboard_address=":8787" if dashboard else ":0",
+            )
         client = Client(cluster)
     else:
         client = Client(scheduler)

@@ -126,7 +126,10 @@ class _FleetRun:
         return rows + [row for row in self.previous if row.path in wanted and row.path not in done]
 
     def _submit(self, function: Callable[..., Any], item: _Pending, *args: Any) -> None:
-        future = self.client.submit(function, *args, pure=False)
+        # A recording's analysis goes before the hashing of files not yet started, so that results flow
+        # from the start and not only after the whole fleet is hashed.
+        priority = 1 if item.stage == "compute" else 0
+        future = self.client.submit(function, *args, pure=False, priority=priority)
         self.pending[future] = item
         self.queue.add(future)
 

@@ -5,8 +5,12 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from carousel_theory.cli._recording_options import add_recording_options
+
+if TYPE_CHECKING:  # the adapter imports the analyses: only when the command runs
+    from carousel_theory.batch.tasks import TaskOptions
 
 #: What to install when Dask or pyarrow is missing.
 INSTALL_HINT = "python -m pip install 'carousel-theory[batch]'"
@@ -81,7 +85,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(handler=run)
 
 
-def _options(args: argparse.Namespace) -> object:
+def _options(args: argparse.Namespace) -> TaskOptions:
     from carousel_theory.batch.tasks import TaskOptions, check_options
 
     options = TaskOptions(
@@ -121,7 +125,7 @@ def run(args: argparse.Namespace) -> int:
     job = FleetJob(
         paths=tuple(discover_recordings(args.inputs)),
         task=args.task,
-        options=_options(args),  # type: ignore[arg-type]
+        options=_options(args),
         out=args.out,
         per_axis=args.per_axis,
         task_timeout=args.task_timeout,
