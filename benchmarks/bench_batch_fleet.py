@@ -156,11 +156,16 @@ def report(
     overhead = max(runs[1]["overhead"], 0.0)
     worker_hours = TARGET_UNITS * (target_task + overhead) / efficiency / 3600
     workers = math.ceil(worker_hours / args.night_hours)
+    linear_hours = TARGET_UNITS * (per_task * TARGET_SAMPLES / HOUR_SAMPLES + overhead) / efficiency / 3600
     print(
         f"10,000 units × 12 h at 1 kHz: {target_task:.0f} s per record (mean task {per_task:.2f} s × "
         f"{TARGET_SAMPLES // HOUR_SAMPLES}^{exponent:.2f}), + {overhead:.2f} s overhead, at {efficiency:.0%} "
         f"efficiency: {worker_hours:.0f} worker-hours, so {workers} single-threaded workers (cores) to "
         f"finish in {args.night_hours:g} h"
+    )
+    print(
+        f"  if the task time grew in proportion to the samples (p = 1, the conservative bound): "
+        f"{linear_hours:.0f} worker-hours, {math.ceil(linear_hours / args.night_hours)} workers"
     )
 
 
