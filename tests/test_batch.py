@@ -133,17 +133,19 @@ def test_fleet_table_matches_single_file_fits_and_reports_the_corrupt_file(clien
     assert "truncated.csv" in report and (tmp_path / "distributions.png").stat().st_size > 0
 
 
-def test_a_resumed_run_recomputes_only_the_changed_file(client, fleet, tmp_path):
+def test_a_resumed_run_recomputes_only_the_changed_file(client, fleet, tmp_path, capsys):
     directory = tmp_path / "in"
     directory.mkdir()
     for name in ("unit_a.csv", "unit_b.npz", "truncated.csv"):
         (directory / name).write_bytes((fleet / name).read_bytes())
     out = tmp_path / "out"
     job = _job(discover_recordings([str(directory)]), out, task="allan")
-    first = run_fleet(client, job, show_progress=False)
+    first = run_fleet(client, job)  # stderr is not a terminal here: no progress counter
+    assert "batch allan" not in capsys.readouterr().err
     assert (first.computed, first.reused) == (3, 0)
     _write(directory / "unit_b.npz", SMALL_SAMPLES, 77)  # new content under the same name
-    second = run_fleet(client, job, show_progress=False)
+    second = run_fleet(client, job, show_progress=True)
+    assert "\rbatch allan 3/3" in capsys.readouterr().err
     assert (second.computed, second.reused) == (1, 2)
     before = {(row.path, row.axis): row for row in first.rows}
     after = {(row.path, row.axis): row for row in second.rows}
