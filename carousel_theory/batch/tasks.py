@@ -1,0 +1,244 @@
+"""The task adapter: the one place where the fleet calls the analyses.
+
+Each task is a function ``(path, options, axis) -> list[BatchRow]`` over today's public APIs:
+:func:`carousel_theory.data.load_recording`, :func:`carousel_theory.allan.allan_variance`,
+:func:`carousel_theory.fitting.fit_noise_model` and :func:`carousel_theory.closed_loop.run_loop` — the
+same calls the single-file commands ``allan``, ``fit`` and ``loop`` make, with the same options. A change
+of those APIs touches this module only. The analyses are imported with this module, so a worker imports
+them once, when it first receives a task, outside the time a task is timed against ``--task-timeout``.
+
+``design`` is not a task yet: no ``design`` command exists. To add it, write ``design_task`` with the
+signature above and add it to :data:`TASKS`; the command line offers every key of :data:`TASKS`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Callable
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import numpy as np
+
+from carousel_theory.allan import ESTIMATORS, allan_variance
+from carousel_theory.batch.rows import BatchRow
+from carousel_theory.closed_loop import run_loop
+from carousel_theory.data import load_recording
+from carousel_theory.fitting import COMPONENTS, NoiseModel, fit_noise_model
+from carousel_theory.units import bias_instability_from_allan_minimum, rad_per_s_to_deg_per_h
+
+__all__ = ["PER_AXIS_TASKS", "TASKS", "TaskOptions", "check_options", "recording_axes"]
+
+
+@dataclass(frozen=True)
+class TaskOptions:
+    """The options of the single-file commands that change a result.
+
+    ``columns``, ``units`` and ``sample_rate`` are the recording options (``--column``, ``--units``,
+    ``--sample-rate``); ``estimator`` serves ``allan`` and ``fit``; ``model``, ``flicker_d``, ``tau_min``,
+    ``tau_max`` and ``iterations`` serve ``fit``; ``samples_per_revolution``, ``alpha`` and ``loop_axes``
+    serve ``loop``.
+    """
+
+    columns: tuple[tuple[str, str], ...] = ()
+    units: str = "rad/s"
+    sample_rate: float | None = None
+    estimator: str = "overlapping"
+    model: tuple[str, ...] = ("white", "rrw")
+    flicker_d: float | None = None
+    tau_min: float | None = None
+    tau_max: float | None = None
+    iterations: int = 3
+    samples_per_revolution: int = 200
+    alpha: float = 0.01
+    loop_axes: tuple[str, ...] | None = None
+
+    def fingerprint(self) -> str:
+        """A stable text of the options: rows computed with other options are not reused."""
+        return json.dumps(asdict(self), sort_keys=True, separators=(",", ":"))
+
+
+def _load(path: str, options: TaskOptions, irregular: str = "refuse") -> Any:
+    return load_recording(
+        path,
+        columns=dict(options.columns) or None,
+        sample_rate=options.sample_rate,
+        units=options.units,
+        irregular=irregular,
+    )
+
+
+def recording_axes(path: str, options: TaskOptions) -> tuple[str, ...]:
+    """The gyro axes of a recording, for splitting a long record into one task per axis."""
+    return tuple(_load(path, options).rates)
+
+
+def _recording_fields(recording: Any) -> dict[str, Any]:
+    return {
+        "samples": len(recording),
+        "sample_rate_hz": float(recording.sample_rate),
+        "duration_s": float(recording.duration),
+    }
+
+
+def _selected(recording: Any, axis: str | None) -> dict[str, np.ndarray]:
+    if axis is None:
+        return dict(recording.rates)
+    if axis not in recording.rates:
+        raise ValueError(f"axis={axis!r}: not in the recording's axes {sorted(recording.rates)}")
+    return {axis: recording.rates[axis]}
+
+
+def allan_task(path: str, options: TaskOptions, axis: str | None = None) -> list[BatchRow]:
+    """``carousel-theory allan``: the octave Allan variance of each axis. The row keeps its minimum, the
+    τ of the minimum and the bias instability read from it (min σ_A / 0.664, IEEE Std 952); no model is
+    fitted, so there are no standard errors."""
+    recording = _load(path, options)
+    rows = []
+    for name, rates in _selected(recording, axis).items():
+        result = allan_variance(rates, recording.sample_rate, "octave", estimator=options.estimator)
+        best = int(np.argmin(result.avar))
+        minimum = math.sqrt(float(result.avar[best]))
+        rows.append(
+            BatchRow(
+                path=path,
+                task="allan",
+                axis=name,
+                **_recording_fields(recording),
+                bias_deg_per_h=float(rad_per_s_to_deg_per_h(float(np.mean(rates)))),
+                minimum_allan_deviation_rad_s=minimum,
+                tau_at_minimum_s=float(result.tau[best]),
+                bias_instability_deg_per_h=float(
+                    rad_per_s_to_deg_per_h(bias_instability_from_allan_minimum(minimum))
+                ),
+            )
+        )
+    return rows
+
+
+def _fit_fields(fit: Any) -> dict[str, Any]:
+    """The field-unit parameters of a FitResult with their standard errors, the data's Allan minimum and
+    the fit's χ²."""
+    values: dict[str, Any] = {}
+    for key, (value, error) in fit.field_units().items():
+        values[key] = float(value)
+        values[f"{key}_se"] = float(error)
+    best = int(np.argmin(fit.allan.avar))
+    values["minimum_allan_deviation_rad_s"] = math.sqrt(float(fit.allan.avar[best]))
+    values["tau_at_minimum_s"] = float(fit.allan.tau[best])
+    values["fit_chi_square"] = float(fit.chi_square)
+    values["fit_degrees_of_freedom"] = float(fit.degrees_of_freedom)
+    return values
+
+
+def fit_task(path: str, options: TaskOptions, axis: str | None = None) -> list[BatchRow]:
+    """``carousel-theory fit``: GLS on the octave Allan variance, one row per axis in field units."""
+    recording = _load(path, options)
+    tau_range = None
+    if options.tau_min is not None or options.tau_max is not None:
+        tau_range = (options.tau_min or 1.0 / recording.sample_rate, options.tau_max or recording.duration)
+    rows = []
+    for name, rates in _selected(recording, axis).items():
+        fit = fit_noise_model(
+            rates,
+            recording.sample_rate,
+            options.model,
+            flicker_d=options.flicker_d,
+            tau_range=tau_range,
+            estimator=options.estimator,
+            iterations=options.iterations,
+        )
+        rows.append(
+            BatchRow(path=path, task="fit", axis=name, **_recording_fields(recording), **_fit_fields(fit))
+        )
+    return rows
+
+
+def _relative_root_error(variance: float, error: float) -> float:
+    """Relative standard error of √v by the delta method: SE(√v)/√v = SE(v) / (2v)."""
+    return error / (2.0 * variance) if variance > 0 else math.nan
+
+
+def _loop_axis_fields(model: dict[str, Any], sample_rate: float, length: int) -> dict[str, Any]:
+    """Field-unit parameters of one axis of the loop's model (long-run white variance, RRW, bias); the
+    bias instability is that model's Allan minimum / 0.664, without a standard error."""
+    errors = model.get("standard_errors", {})
+    white = float(model["long_run_white_variance_rad2_s2"])
+    rrw = float(model["rrw_variance_rad2_s2"])
+    noise = NoiseModel(sample_rate, bias=float(model["bias_rad_s"]), white_variance=white, rrw_variance=rrw)
+    arw = noise.angle_random_walk_deg_per_sqrt_hour()
+    rrw_field = noise.rate_random_walk_deg_per_hour_per_sqrt_hour()
+    return {
+        "bias_deg_per_h": float(noise.bias_deg_per_hour()),
+        "angle_random_walk_deg_per_sqrt_h": float(arw),
+        "angle_random_walk_deg_per_sqrt_h_se": float(
+            arw * _relative_root_error(white, float(errors.get("long_run_white_variance", math.nan)))
+        ),
+        "rate_random_walk_deg_per_h_per_sqrt_h": float(rrw_field),
+        "rate_random_walk_deg_per_h_per_sqrt_h_se": float(
+            rrw_field * _relative_root_error(rrw, float(errors.get("rrw_variance", math.nan)))
+        ),
+        "bias_instability_deg_per_h": float(rad_per_s_to_deg_per_h(noise.bias_instability(length))),
+    }
+
+
+def loop_task(path: str, options: TaskOptions, axis: str | None = None) -> list[BatchRow]:
+    """``carousel-theory loop``: the closed loop on the whole recording (its carouselled bins need the
+    axes together, so it is never split); one row per analysed axis with the extended model's
+    parameters, the effects found and the misfit before/after (the same on every row of the recording)."""
+    if axis is not None:
+        raise ValueError(f"axis={axis!r}: the loop runs on a whole recording, not on one axis")
+    recording = _load(path, options, irregular="keep")
+    result = run_loop(
+        recording,
+        samples_per_revolution=options.samples_per_revolution,
+        axes=options.loop_axes,
+        alpha=options.alpha,
+    )
+    shared = {
+        **_recording_fields(recording),
+        "effects": ";".join(result.effects),
+        "misfit_metric": str(result.metric),
+        "misfit_before": float(result.error_before),
+        "misfit_after": float(result.error_after),
+    }
+    return [
+        BatchRow(
+            path=path,
+            task="loop",
+            axis=name,
+            **shared,
+            **_loop_axis_fields(result.model_after[name], recording.sample_rate, len(recording)),
+        )
+        for name in result.axes
+    ]
+
+
+#: Task name → adapter. ``design`` joins when a ``design`` command exists (see the module text).
+TASKS: dict[str, Callable[[str, TaskOptions, str | None], list[BatchRow]]] = {
+    "allan": allan_task,
+    "fit": fit_task,
+    "loop": loop_task,
+}
+#: Tasks that may run as one task per axis (``--per-axis``) on long records.
+PER_AXIS_TASKS = frozenset({"allan", "fit"})
+
+
+def check_options(task: str, options: TaskOptions) -> None:
+    """Refuse options the analyses would refuse on every file, once, before the fleet starts."""
+    if task not in TASKS:
+        raise ValueError(
+            f"task={task!r}: must be one of {sorted(TASKS)} (design joins when a design command exists)"
+        )
+    if options.estimator not in ESTIMATORS:
+        raise ValueError(f"estimator={options.estimator!r}: must be one of {ESTIMATORS}")
+    unknown = [name for name in options.model if name not in COMPONENTS]
+    if unknown or not options.model:
+        raise ValueError(f"model={options.model!r}: must be names from {COMPONENTS}")
+    if options.iterations < 1:
+        raise ValueError(f"iterations={options.iterations!r}: must be >= 1")
+    if not 0 < options.alpha < 0.5:
+        raise ValueError(f"alpha={options.alpha!r}: must be in (0, 0.5)")
+    if options.samples_per_revolution < 3:
+        raise ValueError(f"samples_per_revolution={options.samples_per_revolution!r}: must be >= 3")
