@@ -24,7 +24,7 @@ V_k = Var f_{n+k} (Sherman–Morrison on C + P_b 11ᵀ):
 * With white noise: W = L_C⁻¹ for the Cholesky factor of C, applied by the generalized Schur
   recursion of :mod:`carousel_theory.generalized_schur` without forming C (C − ZCZᵀ has rank 2):
   g_kᵀu, q_k and V_k − ‖g_k‖² are conditional means and variances of f_{n+k} given the data (and
-  given 1), O(n² (runs + 1)) time and O((n + h)(runs + 1)) memory, any horizon.
+  given 1), O(n log² n (runs + 1)) time and O((n + h)(runs + 1)) memory, any horizon.
 """
 
 from __future__ import annotations
@@ -46,9 +46,6 @@ from carousel_theory.long_memory import fft_convolve, fractional_difference_coef
 from carousel_theory.processes import fractional_coefficients
 
 __all__ = ["Forecast", "fast_kalman_forecast", "fractional_covariance_rows"]
-
-#: Calibrations at least this long show the progress of the Schur recursion on a terminal.
-_PROGRESS_LENGTH = 20_000
 
 
 @dataclass(frozen=True)
@@ -180,9 +177,8 @@ def _whitened_by_schur(x: np.ndarray, n: int, h: int, d: float, sigma2_w: float,
     right_hand_sides = np.empty((n, runs.shape[0] + 1))
     right_hand_sides[:, 0] = 1.0
     right_hand_sides[:, 1:] = runs.T
-    label = "generalized Schur forecast" if n >= _PROGRESS_LENGTH else ""
     result = conditional_forecast(
-        right_hand_sides, h, d=d, driving_variance=sigma2_w, white_variance=sigma2_v, label=label
+        right_hand_sides, h, d=d, driving_variance=sigma2_w, white_variance=sigma2_v
     )
     whitened_ones = result.whitened[:, 0]
     q = result.mean[:, 0]

@@ -6,7 +6,7 @@ Three predictors of the bias over the h samples after a calibration y_1 … y_n:
   fractional-integration weights of eq. (5)–(6), plus a constant bias state, observed through white
   measurement noise. :func:`kalman_forecast` runs it literally (a growing state, O(n³));
   :func:`carousel_theory.fast_prediction.fast_kalman_forecast` gives the same numbers in
-  O((n + h) log(n + h)) without white noise, and with it in O(n² + (n + h) log(n + h)) time and
+  O((n + h) log(n + h)) without white noise, and with it in O(n log² n + (n + h) log(n + h)) time and
   O(n + h) memory (the generalized Schur recursion of :mod:`carousel_theory.generalized_schur`).
 * ``"MA"`` — the moving average of eq. (8)–(9): the k-th forecast is the mean of the last k
   calibration samples, and the mean of all of them once k ≥ n.

@@ -11,8 +11,8 @@ P_A = A⁻¹ − A⁻¹11ᵀA⁻¹/(1ᵀA⁻¹1) (Harville, JASA 72, 1977). σ_w
 σ̂_w² = Σ_k y_kᵀP_A y_k / (K(n − 1)), leaving a function of log ρ (and of d when it is estimated).
 
 Every evaluation needs log|A|, 1ᵀA⁻¹1, 1ᵀA⁻¹y_k and y_kᵀA⁻¹y_k, which the generalized Schur
-recursion of :mod:`carousel_theory.generalized_schur` gives exactly in O(n²(K + 1)) time and
-O(n(K + 1)) memory, without the n × n matrix a dense Cholesky factorisation needs (at n = 6000
+recursion of :mod:`carousel_theory.generalized_schur` gives exactly in O(n log² n (K + 1)) time
+and O(n(K + 1)) memory, without the n × n matrix a dense Cholesky factorisation needs (at n = 6000
 that matrix alone is 288 MB, its factorisation O(n³)). The recursion is exact, so the estimate
 equals the dense REML estimate to rounding; a Whittle likelihood would be faster but only
 approximate for the non-stationary d ≥ ½ of SJ 2012.
@@ -151,8 +151,8 @@ def estimate_noise_variances(
 
     ``d`` is the fixed order (not used when ``estimate_d``); log ρ is searched over
     ``ratio_bounds`` (a ratio at a bound means one component is not identified), d over
-    ``d_bounds`` (Brent's method on the profile in d of the profile in log ρ). Progress, one tick per likelihood evaluation, is
-    shown on a terminal (``show_progress=None``) or as asked.
+    ``d_bounds`` (Brent's method on the profile in d of the profile in log ρ). Progress, one tick
+    per likelihood evaluation, is shown on a terminal (``show_progress=None``) or as asked.
     """
     data = _check_sections(sections)
     d = float(check_fractional_order("d", d))

@@ -51,6 +51,28 @@ def test_whitened_vectors_and_log_determinant_equal_the_dense_cholesky(n, m, d, 
     assert result.whitened.shape == right_hand_sides.shape
 
 
+@pytest.mark.parametrize(("leaf", "quadratic_limit"), [(1, 0), (4, 0), (16, 40), (256, 4096)])
+@pytest.mark.parametrize(("n", "m"), [(1, 1), (97, 2), (300, 20)])
+def test_divide_and_conquer_gives_the_dense_factor_for_every_window_size(
+    monkeypatch, leaf, quadratic_limit, n, m
+):
+    import carousel_theory.generalized_schur as module
+
+    monkeypatch.setattr(module, "_LEAF", leaf)
+    monkeypatch.setattr(module, "_QUADRATIC_LIMIT", quadratic_limit)
+    rng = np.random.default_rng(leaf + n)
+    right_hand_sides = rng.standard_normal((n, m)) + 5.0
+    covariance = _dense_covariance(0.5, 1.0, 2.0, n, n)
+    expected = np.linalg.solve(np.linalg.cholesky(covariance), right_hand_sides)
+    result = whiten(right_hand_sides, d=0.5, driving_variance=1.0, white_variance=2.0)
+    assert np.abs(result.whitened - expected).max() <= 1e-10 * max(1.0, float(np.abs(expected).max()))
+    assert result.log_determinant == pytest.approx(np.linalg.slogdet(covariance)[1], rel=1e-12, abs=1e-11)
+    forecast = conditional_forecast(right_hand_sides, 7, d=0.5, driving_variance=1.0, white_variance=2.0)
+    np.testing.assert_allclose(
+        forecast.whitened, expected, rtol=0, atol=1e-10 * max(1.0, float(np.abs(expected).max()))
+    )
+
+
 def test_log_determinant_equals_the_exact_rational_determinant():
     # d = ½, σ_w² = 1, σ_v² = ⅓: Σ has rational entries; its determinant by Fraction elimination.
     n = 9
