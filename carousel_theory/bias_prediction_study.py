@@ -106,13 +106,17 @@ class RecordingForecast:
 def _recording_model(
     calibration: np.ndarray, d: float, driving: float | None, white: float | None, prior: str
 ) -> tuple[BiasModel, bool]:
-    estimated = driving is None or white is None
-    if estimated:
-        # One calibration segment: REML at fixed d (SJ 2012 estimated the variances by hand).
-        estimate = estimate_noise_variances(calibration[None, :], d, RATIO_BOUNDS)
-        driving = estimate.driving_variance if driving is None else driving
-        white = estimate.white_variance if white is None else white
-    return BiasModel(d=d, driving_variance=driving, white_variance=white, bias_prior=prior), estimated
+    if driving is not None and white is not None:
+        return BiasModel(d=d, driving_variance=driving, white_variance=white, bias_prior=prior), False
+    # One calibration segment: REML at fixed d (SJ 2012 estimated the variances by hand).
+    estimate = estimate_noise_variances(calibration[None, :], d, RATIO_BOUNDS)
+    model = BiasModel(
+        d=d,
+        driving_variance=estimate.driving_variance if driving is None else driving,
+        white_variance=estimate.white_variance if white is None else white,
+        bias_prior=prior,
+    )
+    return model, True
 
 
 def forecast_recording(

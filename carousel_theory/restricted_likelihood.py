@@ -22,7 +22,9 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Generator
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -163,7 +165,10 @@ def estimate_noise_variances(
     d_limits = _check_bounds("d_bounds", d_bounds, 0.0, 1.0) if estimate_d else (d, d)
     if estimate_d and not (d_limits[0] > 0.0 and d_limits[1] < 1.0):
         raise ValueError(f"d_bounds={d_bounds!r}: must lie strictly inside (0, 1)")
-    ticks = progress(itertools.count(), label="REML evaluations", enabled=show_progress)
+    ticks = cast(
+        Generator[int, None, None],
+        progress(itertools.count(), label="REML evaluations", enabled=show_progress),
+    )
     try:
         if estimate_d:
             d, log_ratio = _maximise_order_and_ratio(data, d_limits, log_bounds, ticks)
