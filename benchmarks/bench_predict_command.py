@@ -9,7 +9,8 @@ For each ``calibration:horizon`` pair the command ``python -m carousel_theory pr
 --calibration N --horizon H`` (σ_w², σ_v² estimated by REML from the calibration segment, then the
 Kalman forecast with white noise) runs in its own child process; the child's wall time and peak
 resident set size (``getrusage(RUSAGE_CHILDREN).ru_maxrss`` read in an intermediate process that
-runs only that child) are printed, with the time the same process needs only to start the command
+runs only that child) are printed, with its CPU time (user + system, which a loaded machine
+distorts less than the wall time) and the time the same process needs only to start the command
 (``predict --help``: interpreter and imports), the baseline every size pays.
 
 Without ``--recording`` a seeded synthetic recording (1/f of order ½ plus white noise, 100 Hz, as
@@ -33,8 +34,9 @@ import json, resource, subprocess, sys, time
 start = time.perf_counter()
 completed = subprocess.run(sys.argv[1:], capture_output=True, text=True)
 elapsed = time.perf_counter() - start
-peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024
-print(json.dumps({"seconds": elapsed, "peak_bytes": peak, "code": completed.returncode,
+usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(json.dumps({"seconds": elapsed, "cpu_seconds": usage.ru_utime + usage.ru_stime,
+                  "peak_bytes": usage.ru_maxrss * 1024, "code": completed.returncode,
                   "stdout": completed.stdout, "stderr": completed.stderr[-2000:]}))
 """
 
@@ -77,7 +79,8 @@ def main() -> None:
         startup = _measure([*base, "--help"])
         print(f"recording {recording}")
         print(
-            f"  start-up only (predict --help): {startup['seconds']:7.2f} s, "
+            f"  start-up only (predict --help): {startup['seconds']:7.2f} s wall, "
+            f"{startup['cpu_seconds']:7.2f} s CPU, "
             f"peak RSS {startup['peak_bytes'] / 2**20:7.0f} MiB"
         )
         for n, h in sizes:
@@ -97,7 +100,7 @@ def main() -> None:
                 print(f"  {n} + {h}: failed (exit {result['code']}): {result['stderr']}")
                 continue
             print(
-                f"  {n:>7d} + {h:<8d} {result['seconds']:8.2f} s   "
+                f"  {n:>7d} + {h:<8d} {result['seconds']:8.2f} s wall   {result['cpu_seconds']:8.2f} s CPU   "
                 f"peak RSS {result['peak_bytes'] / 2**20:7.0f} MiB"
             )
             print("    " + result["stdout"].splitlines()[0])

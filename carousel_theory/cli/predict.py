@@ -7,8 +7,6 @@ prints."""
 from __future__ import annotations
 
 import argparse
-import csv
-import io
 import json
 from pathlib import Path
 
@@ -175,6 +173,20 @@ def _print_forecast(result, rows: dict[str, np.ndarray], name: str) -> None:
             print(f"  {method}: IE {integrated:.6g}, RSSE {root_sum:.6g}")
 
 
+def _column_values(values: np.ndarray) -> list:
+    """The column as Python floats, None where it is not finite (one pass, no per-element NumPy)."""
+    result = np.asarray(values, dtype=np.float64).tolist()
+    for index in np.flatnonzero(~np.isfinite(values)).tolist():
+        result[index] = None
+    return result
+
+
+def _column_text(key: str, values: np.ndarray) -> list[str]:
+    """CSV cells: the index as an integer, floats by repr (exact round trip), empty when not finite."""
+    as_text = (lambda value: str(int(value))) if key == "index" else repr
+    return ["" if value is None else as_text(value) for value in _column_values(values)]
+
+
 def _write_forecast(path: Path, rows: dict, model, axis: str, source: str) -> None:
     suffix = path.suffix.lower()
     if suffix == ".json":
@@ -187,24 +199,13 @@ def _write_forecast(path: Path, rows: dict, model, axis: str, source: str) -> No
                 "white_variance": model.white_variance,
                 "bias_prior": model.bias_prior,
             },
-            "columns": {
-                key: [None if not np.isfinite(v) else float(v) for v in values]
-                for key, values in rows.items()
-            },
+            "columns": {key: _column_values(values) for key, values in rows.items()},
         }
         path.write_text(json.dumps(payload, indent=1) + "\n", encoding="utf-8")
     elif suffix == ".csv":
-        buffer = io.StringIO()
-        writer = csv.writer(buffer, lineterminator="\n")
-        writer.writerow(list(rows))
-        for values in zip(*rows.values(), strict=True):
-            writer.writerow(
-                [
-                    "" if not np.isfinite(v) else (str(int(v)) if key == "index" else repr(float(v)))
-                    for key, v in zip(rows, values, strict=True)
-                ]
-            )
-        path.write_text(buffer.getvalue(), encoding="utf-8")
+        columns = [_column_text(key, values) for key, values in rows.items()]
+        lines = [",".join(rows), *map(",".join, zip(*columns, strict=True))]
+        path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     else:
         raise ValueError(f"--output={str(path)!r}: must end in .csv or .json")
 
