@@ -78,8 +78,8 @@ class RecordingForecast:
     """The three forecasts of SJ 2012 §IV after one calibration segment of a recording.
 
     ``model`` is the Kalman model used (its variances given or estimated, see
-    ``variances_estimated``); ``measured`` holds the recorded samples of the horizon (NaN past the
-    end of the recording).
+    ``variances_estimated``, and its order estimated too when ``estimated_d``); ``measured`` holds
+    the recorded samples of the horizon (NaN past the end of the recording).
     """
 
     start: int
@@ -90,6 +90,7 @@ class RecordingForecast:
     moving_average: np.ndarray
     calibration_mean: float
     measured: np.ndarray
+    estimated_d: bool = False
 
     def errors(self) -> dict[str, tuple[float, float]] | None:
         """(IE, RSSE) of KF, MA and CM when the whole horizon was recorded, else None."""
@@ -104,16 +105,21 @@ class RecordingForecast:
 
 
 def _recording_model(
-    calibration: np.ndarray, d: float, driving: float | None, white: float | None, prior: str
+    calibration: np.ndarray,
+    d: float,
+    driving: float | None,
+    white: float | None,
+    prior: str,
+    estimate_d: bool,
 ) -> tuple[BiasModel, bool]:
-    if driving is not None and white is not None:
+    if driving is not None and white is not None and not estimate_d:
         return BiasModel(d=d, driving_variance=driving, white_variance=white, bias_prior=prior), False
-    # One calibration segment: REML at fixed d (SJ 2012 estimated the variances by hand).
-    estimate = estimate_noise_variances(calibration[None, :], d, RATIO_BOUNDS)
+    # One calibration segment: REML at fixed d, or of d too (SJ 2012 estimated the variances by hand).
+    estimate = estimate_noise_variances(calibration[None, :], d, RATIO_BOUNDS, estimate_d=estimate_d)
     model = BiasModel(
-        d=d,
-        driving_variance=estimate.driving_variance if driving is None else driving,
-        white_variance=estimate.white_variance if white is None else white,
+        d=estimate.d,
+        driving_variance=estimate.driving_variance if driving is None or estimate_d else driving,
+        white_variance=estimate.white_variance if white is None or estimate_d else white,
         bias_prior=prior,
     )
     return model, True
@@ -129,10 +135,12 @@ def forecast_recording(
     driving_variance: float | None = None,
     white_variance: float | None = None,
     bias_prior: str = "calibration-mean",
+    estimate_d: bool = False,
 ) -> RecordingForecast:
     """Calibrate on ``rates[start : start + calibration_length]`` and forecast ``horizon`` samples
     with KF (SJ 2012 §IV-A), MA (eq. (8)–(9)) and CM. Variances not given are REML estimates from
-    the calibration segment at the order d."""
+    the calibration segment at the order d; with ``estimate_d`` the order and both variances are
+    estimated jointly by REML (given variances are then not used)."""
     n = check_positive_integer("calibration_length", calibration_length, minimum=2)
     h = check_positive_integer("horizon", horizon)
     start = check_positive_integer("start", start, minimum=0)
@@ -149,7 +157,9 @@ def forecast_recording(
             f"samples after start={start}"
         )
     calibration = np.asarray(rates[start : start + n], dtype=np.float64)
-    model, estimated = _recording_model(calibration, d, driving_variance, white_variance, bias_prior)
+    model, estimated = _recording_model(
+        calibration, d, driving_variance, white_variance, bias_prior, estimate_d
+    )
     indices = np.arange(start + n, start + n + h)
     measured = np.full(h, np.nan)
     available = indices < rates.shape[0]
@@ -163,6 +173,7 @@ def forecast_recording(
         moving_average=moving_average_forecast(calibration, h),
         calibration_mean=float(calibration.mean()),
         measured=measured,
+        estimated_d=estimate_d,
     )
 
 

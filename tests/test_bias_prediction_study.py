@@ -67,6 +67,14 @@ def test_forecast_estimates_missing_variances_by_reml_and_marks_samples_past_the
     assert result.errors() is None
 
 
+def test_forecast_with_estimated_order_uses_the_joint_reml_estimate(rates):
+    result = forecast_recording(rates, start=0, calibration_length=300, horizon=50, estimate_d=True)
+    estimate = estimate_noise_variances(rates[None, :300], 0.5, estimate_d=True)
+    assert result.estimated_d and result.variances_estimated
+    assert result.model.d == estimate.d != 0.5
+    assert result.model.white_variance == pytest.approx(estimate.white_variance, rel=1e-12)
+
+
 def test_simulated_table1_repeats_the_batch_metrics_and_the_population_values():
     model = BiasModel()
     table = simulated_table1(30, 40, 20, model, seed=4, chunk=7)

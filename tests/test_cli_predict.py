@@ -59,6 +59,14 @@ def test_forecast_json_and_estimated_variances(recording, tmp_path):
     assert columns["measured"][-1] is None and columns["measured"][0] is not None
 
 
+def test_fit_d_estimates_the_order_with_the_variances(recording, tmp_path, capsys):
+    path, _ = recording
+    output = tmp_path / "forecast.json"
+    assert main(["predict", str(path), "--calibration", "300", "--fit-d", "--output", str(output)]) == 0
+    assert "d, σ_w², σ_v² by REML" in capsys.readouterr().out
+    assert json.loads(output.read_text())["model"]["d"] != 0.5
+
+
 def test_table1_json_has_every_method_with_population_values(capsys):
     assert main(["predict", "--table1", "--runs", "40", "--seed", "3", "--calibration", "50", "--json"]) == 0
     result = json.loads(capsys.readouterr().out)
@@ -129,8 +137,13 @@ def test_inf_in_the_recording_is_refused(tmp_path, capsys):
 
 @pytest.mark.parametrize(
     "arguments",
-    [["predict"], ["predict", "--table1", "--runs", "1"], ["predict", "--table1", "x.npz"]],
-    ids=["no_data", "table1_one_run", "table1_with_data_file"],
+    [
+        ["predict"],
+        ["predict", "--table1", "--runs", "1"],
+        ["predict", "--table1", "x.npz"],
+        ["predict", "--table1", "--fit-d"],
+    ],
+    ids=["no_data", "table1_one_run", "table1_with_data_file", "table1_fit_d"],
 )
 def test_invalid_invocations_exit_2(arguments, capsys):
     assert main(arguments) == 2

@@ -39,6 +39,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--d", type=float, default=0.5, help="fractional order of the 1/f model (default 0.5)"
     )
+    parser.add_argument(
+        "--fit-d",
+        action="store_true",
+        help="estimate d together with σ_w² and σ_v² by REML on the calibration segment",
+    )
     parser.add_argument("--driving-variance", type=float, default=None, help="σ_w² ((rad/s)² for data)")
     parser.add_argument("--white-variance", type=float, default=None, help="σ_v² ((rad/s)² for data)")
     parser.add_argument(
@@ -125,6 +130,7 @@ def _run_recording(args: argparse.Namespace) -> int:
         driving_variance=args.driving_variance,
         white_variance=args.white_variance,
         bias_prior=args.prior,
+        estimate_d=args.fit_d,
     )
     rows = _forecast_columns(result, recording.time[args.start], 1.0 / recording.sample_rate)
     _print_forecast(result, rows, f"{recording.source} [{axis}]")
@@ -156,6 +162,8 @@ def _forecast_columns(result, start_time: float, sample_interval: float) -> dict
 def _print_forecast(result, rows: dict[str, np.ndarray], name: str) -> None:
     model = result.model
     note = "REML estimate from the calibration segment" if result.variances_estimated else "given"
+    if result.variances_estimated and result.estimated_d:
+        note = "d, σ_w², σ_v² by REML from the calibration segment"
     last = result.start + result.calibration_length - 1
     print(
         f"{name}: calibration {result.start}..{last}, horizon {result.measured.shape[0]}; "
@@ -249,6 +257,8 @@ def _run_table1(args: argparse.Namespace) -> int:
 
     if args.output is not None:
         raise ValueError("--output: not used with --table1 (use --json or --markdown)")
+    if args.fit_d:
+        raise ValueError("--fit-d: not used with --table1 (Table I is run at the given --d)")
     table = _table1(args)
     result = table.as_dict()
     if args.json:
