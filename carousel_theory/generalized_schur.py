@@ -184,16 +184,18 @@ def _leaf(first: np.ndarray, second: np.ndarray, residual: np.ndarray, whitened:
     column_one[1] = 1.0  # entry (B, column 1) at degree 0
     factor_transposed = np.zeros((m, m))  # row k: Cholesky column k on rows k … m−1
     rotated = np.zeros((m, 2 * m))  # row k: M_k Θ_k e₁, degrees 0 … k, rows interleaved
-    log_determinant = 0.0
-    for k in range(m):
-        delta, c, s = _rotation(first[0], second[k])
-        blas.drot(first, second, c, s, n=m - k, offy=k, overwrite_x=1, overwrite_y=1)
-        blas.drot(
-            column_zero, column_one, c, s, n=2 * (k + 1), offx=2 * (m - k), overwrite_x=1, overwrite_y=1
-        )
+    rotate = blas.drot
+    for k in range(m):  # the hot loop: the rotation of _rotation, written out
+        alpha, beta = first.item(0), second.item(k)
+        delta = math.hypot(alpha, beta)
+        if not delta > 0.0:
+            raise ArithmeticError("generalized Schur step: the covariance is not positive definite")
+        c, s = alpha / delta, beta / delta
+        rotate(first, second, c, s, m - k, 0, 1, k, 1, 1, 1)
+        rotate(column_zero, column_one, c, s, 2 * (k + 1), 2 * (m - k), 1, 0, 1, 1, 1)
         factor_transposed[k, k:] = first[: m - k]
         rotated[k, : 2 * (k + 1)] = column_zero[2 * (m - k) :]
-        log_determinant += 2.0 * math.log(delta)
+    log_determinant = 2.0 * float(np.log(np.diagonal(factor_transposed)).sum())
     whitened[...] = solve_triangular(factor_transposed, residual, trans="T", lower=False, check_finite=False)
     accumulated = (rotated.T @ whitened).reshape(m, 2, -1).transpose(1, 0, 2)
     transfer_matrix = np.stack([column_zero.reshape(m + 1, 2).T, column_one.reshape(m + 1, 2).T], axis=1)
