@@ -162,3 +162,21 @@ INVALID = [
 def test_invalid_arguments_are_refused(call, error):
     with pytest.raises(error):
         call()
+
+
+@pytest.mark.parametrize("bias_variance", [math.inf, 0.0, 2.0])
+def test_fast_forecast_with_white_noise_equals_the_growing_state_kalman_filter(bias_variance):
+    from carousel_theory.fast_prediction import fast_kalman_forecast
+    from carousel_theory.long_memory import fractional_integral
+    from carousel_theory.prediction import kalman_forecast
+
+    rng = np.random.default_rng(2012)
+    n, h = 300, 120
+    data = 1.5 + fractional_integral(rng.standard_normal(n), 0.5) + 0.8 * rng.standard_normal(n)
+    options = {"d": 0.5, "driving_variance": 1.0, "white_variance": 0.64, "bias_mean": 1.0}
+    fast = fast_kalman_forecast(data, h, bias_variance=bias_variance, **options)
+    kalman = kalman_forecast(data, h, bias_variance=bias_variance, **options)
+    assert np.abs(fast.mean - kalman.mean).max() <= 1e-10 * float(np.abs(kalman.mean).max())
+    assert np.abs(fast.bias_variance - kalman.bias_variance).max() <= 1e-10 * float(
+        kalman.bias_variance.max()
+    )
