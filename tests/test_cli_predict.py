@@ -45,6 +45,31 @@ def test_forecast_csv_holds_the_kalman_prediction_and_interval(recording, tmp_pa
     assert "IE" in capsys.readouterr().out
 
 
+def test_a_long_forecast_csv_is_written_in_chunks_without_losing_a_row(recording, tmp_path):
+    path, rates = recording
+    output = tmp_path / "long.csv"
+    arguments = ["predict", str(path), "--calibration", "200", "--horizon", "70000"]
+    assert (
+        main([*arguments, "--driving-variance", "1e-8", "--white-variance", "9e-8", "--output", str(output)])
+        == 0
+    )
+    with output.open() as handle:
+        table = list(csv.DictReader(handle))
+    assert len(table) == 70000
+    assert [row["index"] for row in table[65535:65538]] == ["65735", "65736", "65737"]
+    expected = fast_kalman_forecast(
+        rates[:200] - rates[:200].mean(),
+        70000,
+        driving_variance=1e-8,
+        white_variance=9e-8,
+        bias_mean=0.0,
+        bias_variance=0.0,
+    )
+    got = np.array([float(row["kf_prediction"]) for row in table])
+    np.testing.assert_allclose(got, expected.mean + rates[:200].mean(), rtol=1e-12)
+    assert table[399]["measured"] != "" and table[400]["measured"] == ""
+
+
 def test_forecast_json_and_estimated_variances(recording, tmp_path):
     path, _ = recording
     output = tmp_path / "forecast.json"

@@ -181,6 +181,10 @@ def _print_forecast(result, rows: dict[str, np.ndarray], name: str) -> None:
             print(f"  {method}: IE {integrated:.6g}, RSSE {root_sum:.6g}")
 
 
+#: Rows of forecast CSV formatted at a time.
+_CSV_CHUNK = 65_536
+
+
 def _column_values(values: np.ndarray) -> list:
     """The column as Python floats, None where it is not finite (one pass, no per-element NumPy)."""
     result = np.asarray(values, dtype=np.float64).tolist()
@@ -211,9 +215,14 @@ def _write_forecast(path: Path, rows: dict, model, axis: str, source: str) -> No
         }
         path.write_text(json.dumps(payload, indent=1) + "\n", encoding="utf-8")
     elif suffix == ".csv":
-        columns = [_column_text(key, values) for key, values in rows.items()]
-        lines = [",".join(rows), *map(",".join, zip(*columns, strict=True))]
-        path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+        length = len(next(iter(rows.values())))
+        with path.open("w", encoding="utf-8", newline="") as handle:
+            handle.write(",".join(rows) + "\n")
+            for start in range(0, length, _CSV_CHUNK):  # in chunks: the text of 10⁶ rows never all in memory
+                columns = [
+                    _column_text(key, values[start : start + _CSV_CHUNK]) for key, values in rows.items()
+                ]
+                handle.write("".join(",".join(cells) + "\n" for cells in zip(*columns, strict=True)))
     else:
         raise ValueError(f"--output={str(path)!r}: must end in .csv or .json")
 
