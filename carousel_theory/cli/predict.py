@@ -13,7 +13,6 @@ from pathlib import Path
 import numpy as np
 
 from carousel_theory._validation import check_fractional_order, check_positive_integer, check_positive_real
-from carousel_theory.bias_prediction_study import ROW_NAMES
 from carousel_theory.cli._files import write_or_compare
 
 
@@ -282,6 +281,8 @@ def _run_table1(args: argparse.Namespace) -> int:
 
 
 def _print_table(result: dict) -> None:
+    from carousel_theory.bias_prediction_study import ROW_NAMES
+
     blocks = [("", result)] if result["settings"]["kind"] == "simulated" else list(result["axes"].items())
     for name, entry in blocks:
         if name:
