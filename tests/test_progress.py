@@ -16,7 +16,13 @@ def test_a_counter_closed_early_still_ends_its_line():
         next(ticks)
     ticks.close()
     text = stream.getvalue()
-    assert text.startswith("\revaluations 1") and text.endswith("\n") and text.count("\n") == 1
+    assert text.endswith("\n") and text.count("\n") == 1  # redraws are rate-limited; the end is not
+
+
+def test_the_last_item_of_a_known_total_is_drawn():
+    stream = io.StringIO()
+    assert list(progress(range(3), label="runs", stream=stream, enabled=True)) == [0, 1, 2]
+    assert stream.getvalue().split("\r")[-1].startswith("runs 3/3")
 
 
 def test_nothing_is_written_when_not_enabled():
