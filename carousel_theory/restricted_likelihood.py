@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Generator
+from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import cast
 
@@ -110,19 +110,21 @@ def _check_bounds(name: str, bounds: tuple[float, float], low_limit: float, high
     return low, high
 
 
-def _maximise_ratio(data: np.ndarray, d: float, log_bounds: tuple[float, float], ticks) -> float:
+#: (ℓ, σ̂_w²) of the profile at (d, log ρ); see :func:`_profile`.
+Evaluate = Callable[[float, float], tuple[float, float]]
+
+
+def _maximise_ratio(evaluate: Evaluate, d: float, log_bounds: tuple[float, float]) -> float:
     from scipy.optimize import minimize_scalar  # slow to import, needed only here
 
-    def objective(value: float) -> float:
-        next(ticks)
-        return -_profile(data, d, value)[0]
-
-    result = minimize_scalar(objective, bounds=log_bounds, method="bounded", options={"xatol": 1e-5})
+    result = minimize_scalar(
+        lambda value: -evaluate(d, value)[0], bounds=log_bounds, method="bounded", options={"xatol": 1e-5}
+    )
     return float(result.x)
 
 
 def _maximise_order_and_ratio(
-    data: np.ndarray, d_bounds: tuple[float, float], log_bounds: tuple[float, float], ticks
+    evaluate: Evaluate, d_bounds: tuple[float, float], log_bounds: tuple[float, float]
 ) -> tuple[float, float]:
     """Nested search: for each d the ratio is maximised by Brent's method, then d by Brent's method
     on that profile (robust where a simplex search in (d, log ρ) stalls on the ridge)."""
@@ -131,12 +133,12 @@ def _maximise_order_and_ratio(
     ratios: dict[float, float] = {}
 
     def objective(order: float) -> float:
-        ratios[order] = _maximise_ratio(data, order, log_bounds, ticks)
-        return -_profile(data, order, ratios[order])[0]
+        ratios[order] = _maximise_ratio(evaluate, order, log_bounds)
+        return -evaluate(order, ratios[order])[0]
 
     result = minimize_scalar(objective, bounds=d_bounds, method="bounded", options={"xatol": 1e-5})
     d = float(result.x)
-    return d, ratios[d] if d in ratios else _maximise_ratio(data, d, log_bounds, ticks)
+    return d, ratios[d] if d in ratios else _maximise_ratio(evaluate, d, log_bounds)
 
 
 def estimate_noise_variances(
@@ -169,14 +171,23 @@ def estimate_noise_variances(
         Generator[int, None, None],
         progress(itertools.count(), label="REML evaluations", enabled=show_progress),
     )
+    evaluations: dict[tuple[float, float], tuple[float, float]] = {}
+
+    def evaluate(order: float, log_ratio: float) -> tuple[float, float]:
+        # Brent's method ends on a point it has evaluated: the final values come from this memo.
+        if (order, log_ratio) not in evaluations:
+            next(ticks)
+            evaluations[order, log_ratio] = _profile(data, order, log_ratio)
+        return evaluations[order, log_ratio]
+
     try:
         if estimate_d:
-            d, log_ratio = _maximise_order_and_ratio(data, d_limits, log_bounds, ticks)
+            d, log_ratio = _maximise_order_and_ratio(evaluate, d_limits, log_bounds)
         else:
-            log_ratio = _maximise_ratio(data, d, log_bounds, ticks)
+            log_ratio = _maximise_ratio(evaluate, d, log_bounds)
+        log_likelihood, scale = evaluate(d, log_ratio)
     finally:
         ticks.close()
-    log_likelihood, scale = _profile(data, d, log_ratio)
     return VarianceEstimate(
         driving_variance=scale,
         white_variance=scale * math.exp(log_ratio),
