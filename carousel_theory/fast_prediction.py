@@ -21,8 +21,10 @@ V_k = Var f_{n+k} (Sherman–Morrison on C + P_b 11ᵀ):
 * No white noise (σ_v = 0, the simulated columns of SJ 2012 Table I): W = Φ/σ_w is the fractional
   difference (SJ 2012 eq. (3), corrected), g_k = σ_w (ψ_{n+k−1}, …, ψ_k), V_k − ‖g_k‖² =
   σ_w² Σ_{j<k} ψ_j², so every quantity is a convolution: O((n + h) log(n + h)).
-* With white noise: W = L⁻¹ for the Cholesky factor of C (dense, O(n³) once); Cov(f_s, f_t) is
-  built in O(n(n + h)) from the displacement recursion Γ_{s,t} = Γ_{s−1,t−1} + ψ_{s−1}ψ_{t−1}.
+* With white noise: W = L_C⁻¹ for the Cholesky factor of C, applied by the generalized Schur
+  recursion of :mod:`carousel_theory.generalized_schur` without forming C (C − ZCZᵀ has rank 2):
+  g_kᵀu, q_k and V_k − ‖g_k‖² are conditional means and variances of f_{n+k} given the data (and
+  given 1), O(n log² n (runs + 1)) time and O((n + h)(runs + 1)) memory, any horizon.
 """
 
 from __future__ import annotations
@@ -31,7 +33,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import cho_factor, solve_triangular
 
 from carousel_theory._validation import (
     check_finite_array,
@@ -40,6 +41,7 @@ from carousel_theory._validation import (
     check_positive_real,
     check_real,
 )
+from carousel_theory.generalized_schur import conditional_forecast
 from carousel_theory.long_memory import fft_convolve, fractional_difference_coefficients
 from carousel_theory.processes import fractional_coefficients
 
@@ -144,7 +146,7 @@ def fast_kalman_forecast(
     if sigma2_v == 0.0:
         mean_part, q, s, r, variance_part = _whitened_by_fractional_difference(x, n, h, d, sigma2_w)
     else:
-        mean_part, q, s, r, variance_part = _whitened_by_cholesky(x, n, h, d, sigma2_w, sigma2_v)
+        mean_part, q, s, r, variance_part = _whitened_by_schur(x, n, h, d, sigma2_w, sigma2_v)
     weight = _prior_weight(prior, s)
     r = np.asarray(r)[..., None]
     mean = b0 + mean_part + r * (1.0 - q) * weight
@@ -168,20 +170,21 @@ def _whitened_by_fractional_difference(x: np.ndarray, n: int, h: int, d: float, 
     return mean_part, q, s, r, variance_part
 
 
-def _whitened_by_cholesky(x: np.ndarray, n: int, h: int, d: float, sigma2_w: float, sigma2_v: float):
-    gamma = fractional_covariance_rows(d, n, n + h) * sigma2_w
-    covariance = gamma[:, :n].copy()
-    covariance[np.diag_indices(n)] += sigma2_v
-    lower, _ = cho_factor(covariance, lower=True, overwrite_a=True, check_finite=False)
-    lower = np.tril(lower)
-    cross = solve_triangular(lower, gamma[:, n:], lower=True, check_finite=False)  # columns g_k
-    whitened_ones = solve_triangular(lower, np.ones(n), lower=True, check_finite=False)
-    u = solve_triangular(lower, x.T, lower=True, check_finite=False)  # (n,) or (n, runs)
-    mean_part = (cross.T @ u).T
-    q = cross.T @ whitened_ones
+def _whitened_by_schur(x: np.ndarray, n: int, h: int, d: float, sigma2_w: float, sigma2_v: float):
+    # W = L_Σ⁻¹ through the generalized Schur recursion: the ones vector and every calibration are
+    # right-hand sides of one pass; g_kᵀu and q_k = g_kᵀc are the conditional means of f_{n+k}.
+    runs = x.reshape(-1, n)
+    right_hand_sides = np.empty((n, runs.shape[0] + 1))
+    right_hand_sides[:, 0] = 1.0
+    right_hand_sides[:, 1:] = runs.T
+    result = conditional_forecast(
+        right_hand_sides, h, d=d, driving_variance=sigma2_w, white_variance=sigma2_v
+    )
+    whitened_ones = result.whitened[:, 0]
+    q = result.mean[:, 0]
     s = float(whitened_ones @ whitened_ones)
-    r = (whitened_ones @ u).T if u.ndim == 2 else float(whitened_ones @ u)
-    psi = fractional_coefficients(d, n + h)
-    total_variance = sigma2_w * np.cumsum(psi**2)[n : n + h]  # V_k = Var f_{n+k}
-    variance_part = total_variance - np.einsum("ik,ik->k", cross, cross)
-    return mean_part, q, s, r, variance_part
+    r = whitened_ones @ result.whitened[:, 1:]
+    mean_part = result.mean[:, 1:].T
+    if x.ndim == 1:
+        mean_part, r = mean_part[0], float(r[0])
+    return mean_part, q, s, r, result.variance

@@ -16,7 +16,8 @@ stationary range |d| < ½: the finite sums never meet the convergence question o
 The autoregressive weights of SJ 2012 eq. (6) are π_j = −φ_j (j ≥ 1).
 
 The memory parameter is estimated by the exact local Whittle estimator of Shimotsu and Phillips
-(Ann. Stat. 33(4), 2005), the estimator SJ 2012 §V cites for its d = 0.535.
+(Ann. Stat. 33(4), 2005), the estimator SJ 2012 §V cites for its d = 0.535. The variances σ_w², σ_v²
+of the prediction model are estimated in :mod:`carousel_theory.restricted_likelihood`.
 """
 
 from __future__ import annotations
@@ -34,10 +35,8 @@ from carousel_theory._validation import (
 from carousel_theory.processes import fractional_coefficients
 
 __all__ = [
-    "VarianceEstimate",
     "WhittleEstimate",
     "autoregressive_coefficients",
-    "estimate_noise_variances",
     "exact_local_whittle",
     "fft_convolve",
     "fractional_difference",
@@ -193,85 +192,4 @@ def exact_local_whittle(
     )
     return WhittleEstimate(
         d=float(result.x), standard_error=1.0 / (2.0 * np.sqrt(m)), frequencies=m, length=n
-    )
-
-
-@dataclass(frozen=True)
-class VarianceEstimate:
-    """Restricted maximum-likelihood variances of the model y = b + f + v (f of TIM 2014 eq. (3)):
-    ``driving_variance`` σ_w², ``white_variance`` σ_v², from ``sections`` independent sections of
-    ``length`` samples each, at the fixed order ``d``."""
-
-    driving_variance: float
-    white_variance: float
-    d: float
-    sections: int
-    length: int
-    log_likelihood: float
-
-
-def estimate_noise_variances(
-    sections: np.ndarray, d: float = 0.5, ratio_bounds: tuple[float, float] = (1e-4, 1e4)
-) -> VarianceEstimate:
-    """REML estimates of σ_w² and σ_v² from independent sections (rows), each with its own unknown
-    constant bias, at a fixed d.
-
-    Each section is y = b1 + x with Cov x = σ_w² (Γ + ρ I), Γ the covariance of eq. (3) for unit
-    driving variance and ρ = σ_v²/σ_w². With A = Γ + ρI and P_A = A⁻¹ − A⁻¹11ᵀA⁻¹/(1ᵀA⁻¹1), the
-    restricted log-likelihood of K sections of length n is, up to a constant,
-    −½ [K(n − 1) log σ_w² + K log|A| + K log(1ᵀA⁻¹1) + Σ_k y_kᵀ P_A y_k / σ_w²]; σ_w² is profiled out
-    (σ̂_w² = Σ_k y_kᵀP_A y_k / (K(n − 1))) and log ρ maximised over ``ratio_bounds`` (a ratio at the
-    bound means one component is not identified).
-    """
-    from scipy.linalg import cho_factor, cho_solve
-    from scipy.optimize import minimize_scalar
-
-    from carousel_theory.fast_prediction import fractional_covariance_rows
-
-    data = np.asarray(sections, dtype=np.float64)
-    if data.ndim != 2:
-        raise ValueError(
-            f"sections: must be a 2-dimensional array (sections, samples), got shape {data.shape}"
-        )
-    check_finite_array("sections", data.reshape(-1))
-    count, n = data.shape
-    if n < 3:
-        raise ValueError(f"sections: must hold at least 3 samples each, got {n}")
-    d = _check_order("d", d, 0.0, 1.0)
-    low, high = (float(check_real("ratio_bounds", b)) for b in ratio_bounds)
-    if not 0 < low < high:
-        raise ValueError(f"ratio_bounds={ratio_bounds!r}: must satisfy 0 < low < high")
-    gamma = fractional_covariance_rows(d, n, n)
-    ones = np.ones(n)
-
-    def profile(log_ratio: float) -> tuple[float, float]:
-        matrix = gamma + np.exp(log_ratio) * np.eye(n)
-        factor = cho_factor(matrix, lower=True, check_finite=False)
-        log_det = 2.0 * float(np.log(np.diag(factor[0])).sum())
-        solved_ones = cho_solve(factor, ones, check_finite=False)
-        total_ones = float(ones @ solved_ones)
-        solved = cho_solve(factor, data.T, check_finite=False)
-        quadratic = (
-            float(np.einsum("ij,ji->", data, solved)) - float(((data @ solved_ones) ** 2).sum()) / total_ones
-        )
-        scale = quadratic / (count * (n - 1))
-        log_likelihood = -0.5 * (
-            count * (n - 1) * (np.log(scale) + 1.0) + count * (log_det + np.log(total_ones))
-        )
-        return float(log_likelihood), scale
-
-    result = minimize_scalar(
-        lambda value: -profile(value)[0],
-        bounds=(np.log(low), np.log(high)),
-        method="bounded",
-        options={"xatol": 1e-5},
-    )
-    log_likelihood, scale = profile(float(result.x))
-    return VarianceEstimate(
-        driving_variance=scale,
-        white_variance=scale * float(np.exp(result.x)),
-        d=d,
-        sections=count,
-        length=n,
-        log_likelihood=log_likelihood,
     )

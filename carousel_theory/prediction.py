@@ -6,7 +6,8 @@ Three predictors of the bias over the h samples after a calibration y_1 … y_n:
   fractional-integration weights of eq. (5)–(6), plus a constant bias state, observed through white
   measurement noise. :func:`kalman_forecast` runs it literally (a growing state, O(n³));
   :func:`carousel_theory.fast_prediction.fast_kalman_forecast` gives the same numbers in
-  O((n + h) log(n + h)) without white noise.
+  O((n + h) log(n + h)) without white noise, and with it in O(n log² n + (n + h) log(n + h)) time and
+  O(n + h) memory (the generalized Schur recursion of :mod:`carousel_theory.generalized_schur`).
 * ``"MA"`` — the moving average of eq. (8)–(9): the k-th forecast is the mean of the last k
   calibration samples, and the mean of all of them once k ≥ n.
 * ``"CM"`` — the calibration mean.
@@ -131,17 +132,7 @@ def kalman_forecast(
     forecast = np.empty(h)
     variance = np.empty(h)
 
-    # j = 1: f_1 = w_1.
-    if math.isinf(prior):
-        mean[0] = data[0]
-        covariance[0, 0] = sigma2_w + sigma2_v
-        covariance[0, 1] = covariance[1, 0] = -sigma2_w
-        covariance[1, 1] = sigma2_w
-    else:
-        mean[0] = bias_mean
-        covariance[0, 0] = prior
-        covariance[1, 1] = sigma2_w
-        _measurement_update(mean, covariance, 1, data[0], sigma2_v)
+    _first_sample(mean, covariance, data[0], sigma2_w, sigma2_v, bias_mean, prior)
     for j in range(2, total + 1):
         coefficients = weights[j - 2 :: -1]  # π_{j−1}, …, π_1 for f_1 … f_{j−1}
         row = covariance[:j, 1:j] @ coefficients  # Cov(state, f_j)
@@ -156,6 +147,20 @@ def kalman_forecast(
             forecast[k] = mean[0] + mean[j]
             variance[k] = covariance[0, 0] + 2.0 * covariance[0, j] + covariance[j, j]
     return Forecast(mean=forecast, bias_variance=variance, observation_variance=variance + sigma2_v)
+
+
+def _first_sample(mean, covariance, observed, sigma2_w, sigma2_v, bias_mean, prior) -> None:
+    """State after y_1 (f_1 = w_1): the exact diffuse initialisation, or a prior update."""
+    if math.isinf(prior):
+        mean[0] = observed
+        covariance[0, 0] = sigma2_w + sigma2_v
+        covariance[0, 1] = covariance[1, 0] = -sigma2_w
+        covariance[1, 1] = sigma2_w
+    else:
+        mean[0] = bias_mean
+        covariance[0, 0] = prior
+        covariance[1, 1] = sigma2_w
+        _measurement_update(mean, covariance, 1, observed, sigma2_v)
 
 
 def _measurement_update(mean: np.ndarray, covariance: np.ndarray, j: int, observed: float, sigma2_v: float):

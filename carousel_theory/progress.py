@@ -33,13 +33,15 @@ def progress(
     if total is None and hasattr(items, "__len__"):
         total = len(items)  # type: ignore[arg-type]
     start = last = time.monotonic()
-    for count, item in enumerate(items, start=1):
-        yield item
-        now = time.monotonic()
-        if now - last >= 0.1 or count == total:
-            last = now
-            of = f"/{total}" if total else ""
-            stream.write(f"\r{label} {count}{of}  {now - start:6.1f} s")
-            stream.flush()
-    stream.write("\n")
-    stream.flush()
+    try:
+        for count, item in enumerate(items, start=1):
+            yield item
+            now = time.monotonic()
+            if now - last >= 0.1 or count == total:
+                last = now
+                of = f"/{total}" if total else ""
+                stream.write(f"\r{label} {count}{of}  {now - start:6.1f} s")
+                stream.flush()
+    finally:  # also when the consumer stops early (an open-ended counter closed by its user)
+        stream.write("\n")
+        stream.flush()

@@ -45,6 +45,31 @@ def test_forecast_csv_holds_the_kalman_prediction_and_interval(recording, tmp_pa
     assert "IE" in capsys.readouterr().out
 
 
+def test_a_long_forecast_csv_is_written_in_chunks_without_losing_a_row(recording, tmp_path):
+    path, rates = recording
+    output = tmp_path / "long.csv"
+    arguments = ["predict", str(path), "--calibration", "200", "--horizon", "70000"]
+    assert (
+        main([*arguments, "--driving-variance", "1e-8", "--white-variance", "9e-8", "--output", str(output)])
+        == 0
+    )
+    with output.open() as handle:
+        table = list(csv.DictReader(handle))
+    assert len(table) == 70000
+    assert [row["index"] for row in table[65535:65538]] == ["65735", "65736", "65737"]
+    expected = fast_kalman_forecast(
+        rates[:200] - rates[:200].mean(),
+        70000,
+        driving_variance=1e-8,
+        white_variance=9e-8,
+        bias_mean=0.0,
+        bias_variance=0.0,
+    )
+    got = np.array([float(row["kf_prediction"]) for row in table])
+    np.testing.assert_allclose(got, expected.mean + rates[:200].mean(), rtol=1e-12)
+    assert table[399]["measured"] != "" and table[400]["measured"] == ""
+
+
 def test_forecast_json_and_estimated_variances(recording, tmp_path):
     path, _ = recording
     output = tmp_path / "forecast.json"
@@ -57,6 +82,14 @@ def test_forecast_json_and_estimated_variances(recording, tmp_path):
     assert len(columns["kf_prediction"]) == 400
     # beyond the end of the recording the measured column is empty
     assert columns["measured"][-1] is None and columns["measured"][0] is not None
+
+
+def test_fit_d_estimates_the_order_with_the_variances(recording, tmp_path, capsys):
+    path, _ = recording
+    output = tmp_path / "forecast.json"
+    assert main(["predict", str(path), "--calibration", "300", "--fit-d", "--output", str(output)]) == 0
+    assert "d, σ_w², σ_v² by REML" in capsys.readouterr().out
+    assert json.loads(output.read_text())["model"]["d"] != 0.5
 
 
 def test_table1_json_has_every_method_with_population_values(capsys):
@@ -129,8 +162,13 @@ def test_inf_in_the_recording_is_refused(tmp_path, capsys):
 
 @pytest.mark.parametrize(
     "arguments",
-    [["predict"], ["predict", "--table1", "--runs", "1"], ["predict", "--table1", "x.npz"]],
-    ids=["no_data", "table1_one_run", "table1_with_data_file"],
+    [
+        ["predict"],
+        ["predict", "--table1", "--runs", "1"],
+        ["predict", "--table1", "x.npz"],
+        ["predict", "--table1", "--fit-d"],
+    ],
+    ids=["no_data", "table1_one_run", "table1_with_data_file", "table1_fit_d"],
 )
 def test_invalid_invocations_exit_2(arguments, capsys):
     assert main(arguments) == 2

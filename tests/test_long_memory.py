@@ -12,7 +12,6 @@ from conftest import Z_MONTE_CARLO
 
 from carousel_theory.long_memory import (
     autoregressive_coefficients,
-    estimate_noise_variances,
     exact_local_whittle,
     fractional_difference,
     fractional_difference_coefficients,
@@ -100,38 +99,6 @@ def test_exact_local_whittle_on_white_noise_is_near_zero():
     assert abs(estimate.d) <= Z_MONTE_CARLO * estimate.standard_error
 
 
-def _restricted_log_likelihood(sections, d, driving, white):
-    """−½ Σ_k [log|C| + log(1ᵀC⁻¹1) + y_kᵀ P y_k], C = σ_w² ΨΨᵀ + σ_v² I, written with dense matrices."""
-    n = sections.shape[1]
-    psi = fractional_coefficients(d, n)
-    index = np.arange(n)
-    lag = index[:, None] - index[None, :]
-    mixing = np.where(lag >= 0, psi[np.clip(lag, 0, None)], 0.0)
-    covariance = driving * mixing @ mixing.T + white * np.eye(n)
-    inverse = np.linalg.inv(covariance)
-    ones = np.ones(n)
-    total = ones @ inverse @ ones
-    projector = inverse - np.outer(inverse @ ones, inverse @ ones) / total
-    quadratic = np.einsum("ki,ij,kj->", sections, projector, sections)
-    return -0.5 * (sections.shape[0] * (np.linalg.slogdet(covariance)[1] + np.log(total)) + quadratic)
-
-
-def test_reml_variances_maximise_the_dense_restricted_likelihood():
-    from carousel_theory.prediction import BiasModel, simulate_sections
-
-    rng = np.random.default_rng(8)
-    model = BiasModel(d=0.5, driving_variance=2.0, white_variance=5.0)
-    sections = simulate_sections(60, 120, model, rng=rng, bias=3.0)
-    estimate = estimate_noise_variances(sections, 0.5)
-    best = _restricted_log_likelihood(sections, 0.5, estimate.driving_variance, estimate.white_variance)
-    assert estimate.log_likelihood == pytest.approx(best, rel=1e-10)
-    for factor_w, factor_v in [(1.02, 1.0), (0.98, 1.0), (1.0, 1.02), (1.0, 0.98), (1.02, 1.02)]:
-        nearby = _restricted_log_likelihood(
-            sections, 0.5, estimate.driving_variance * factor_w, estimate.white_variance * factor_v
-        )
-        assert nearby < best
-
-
 INVALID = [
     ("difference_coefficients_d_high", lambda: fractional_difference_coefficients(2.0, 5), ValueError),
     ("difference_coefficients_length_zero", lambda: fractional_difference_coefficients(0.5, 0), ValueError),
@@ -148,10 +115,6 @@ INVALID = [
         lambda: exact_local_whittle(np.arange(100.0), frequencies=60),
         ValueError,
     ),
-    ("reml_one_dimensional", lambda: estimate_noise_variances(np.ones(10)), ValueError),
-    ("reml_nan", lambda: estimate_noise_variances(np.array([[1.0, np.nan, 2.0]])), ValueError),
-    ("reml_d_one", lambda: estimate_noise_variances(np.ones((2, 5)), 1.0), ValueError),
-    ("reml_bounds_reversed", lambda: estimate_noise_variances(np.ones((2, 5)), 0.5, (2.0, 1.0)), ValueError),
     ("whittle_bounds_reversed", lambda: exact_local_whittle(np.arange(100.0), bounds=(1.0, 0.0)), ValueError),
 ]
 
