@@ -11,9 +11,11 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import astuple
 
 import numpy as np
 
+from carousel_theory.bias_prediction_study import PAPER_TABLE1_MEASURED, PAPER_TABLE1_SIMULATED
 from carousel_theory.claim import Claim, Status, Verdict
 from carousel_theory.claims._common import figure_1_not_public
 from carousel_theory.prediction import (
@@ -41,19 +43,9 @@ HORIZON = 1000
 Z = 4.5
 
 
-#: SJ 2012 Table I as printed: (mean IE, IE std, mean RSSE, RSSE std) per method.
-TABLE1_SIMULATED = {
-    "KF": (-119, 2120, 136, 23.3),
-    "MA": (-142, 2210, 139, 25.4),
-    "CM": (-115, 2280, 138, 24.9),
-}
-
-
-TABLE1_REAL = {
-    "KF": (-0.0214, 3.86, 0.390, 0.0326),
-    "MA": (-0.0258, 3.92, 0.393, 0.0339),
-    "CM": (-0.0728, 4.22, 0.394, 0.0350),
-}
+#: SJ 2012 Table I as printed: (mean IE, IE std, mean RSSE, RSSE std) per method (one copy, in the library).
+TABLE1_SIMULATED = {method: astuple(row) for method, row in PAPER_TABLE1_SIMULATED.items()}
+TABLE1_REAL = {method: astuple(row) for method, row in PAPER_TABLE1_MEASURED.items()}
 
 
 #: Half a unit of the last printed digit of each Table I entry (the printing's rounding).
