@@ -22,12 +22,18 @@ from fractions import Fraction
 import sympy as sp
 
 from carousel_theory._validation import check_positive_integer
-from carousel_theory.symbols import N, a, alpha, b, h, k, m, rho, theta, u, var_x, var_y, x, y
+from carousel_theory.symbols import N, a, alpha, b, g, h, k, m, rho, theta, u, var_x, var_y, x, y
 
 __all__ = [
     "BIAS_CAROUSEL_RESIDUAL",
     "BIAS_COSINE_RESIDUAL",
     "BIAS_SINE_RESIDUAL",
+    "INDEXING2_BIAS_VARIANCE",
+    "INDEXING2_RRW_VARIANCE",
+    "INDEXING2_WHITE_VARIANCE",
+    "INDEXING4_BIAS_VARIANCE",
+    "INDEXING4_RRW_VARIANCE",
+    "INDEXING4_WHITE_VARIANCE",
     "COSINE_SQUARES_SUM",
     "RRW_AVERAGE_COVARIANCE",
     "RRW_AVERAGE_FIRST_BIN_VARIANCE",
@@ -288,3 +294,26 @@ def rectangle_rule_steps(weight: str = "sine") -> list[tuple[str, sp.Expr]]:
         ("integral of the numerator", outer),
         ("result", result),
     ]
+
+
+# --------------------------------------------------------------------------------------------
+# Beyond TIM 2014: 2- and 4-position indexing (maytagging) of the two-gyro unit, k whole cycles,
+# N samples per dwell, g transition samples after each dwell (dropped from the estimate).
+# Ω̂ = (1/n_used) Σ R_z(φ_t) ω_t (carousel_theory.rotation_schemes); each horizontal component
+# weights each dwell's samples with ±1/(P k N) or 0. The suffix sums of these weights are linear
+# ramps inside a dwell and constant across a gap, so Σ_i (Σ_{t≥i} w_t)² has the closed form below
+# (proofs/proof_indexing_variances.py). Both components have this variance; they are uncorrelated.
+# --------------------------------------------------------------------------------------------
+
+#: A unit random-constant bias (TIM 2014 eq. (1)) on each gyro leaves nothing: each cycle's weights sum to 0.
+INDEXING2_BIAS_VARIANCE = sp.Integer(0)
+#: White noise, unit variance: 2kN samples weighted ±1/(2kN) on one gyro.
+INDEXING2_WHITE_VARIANCE = 1 / (2 * k * N)
+#: Rate random walk, unit increment variance: (2N² + 3gN + 1)/(12kN).
+INDEXING2_RRW_VARIANCE = (2 * N**2 + 3 * g * N + 1) / (12 * k * N)
+#: 4 positions: the bias cancels as well.
+INDEXING4_BIAS_VARIANCE = sp.Integer(0)
+#: White noise, unit variance: each gyro weighted ±1/(4kN) on 2kN samples, both gyros.
+INDEXING4_WHITE_VARIANCE = 1 / (4 * k * N)
+#: Rate random walk, unit increment variance: (5N² + 6gN + 1)/(24kN).
+INDEXING4_RRW_VARIANCE = (5 * N**2 + 6 * g * N + 1) / (24 * k * N)

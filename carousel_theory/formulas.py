@@ -49,6 +49,7 @@ PARAMETER_HELP = {
     "var_x": "white-noise variance of the x gyro, >= 0",
     "var_y": "white-noise variance of the y gyro, >= 0",
     "d": "degree of fractional integration, 0 < d < 1",
+    "g": "indexing: transition samples after each dwell, dropped from the estimate, an integer >= 0",
 }
 
 
@@ -57,6 +58,8 @@ def _check_scalar(name: str, value: Any, minimum_samples: int) -> Any:
         return check_positive_integer("N", value, minimum=minimum_samples)
     if name in _BIN_PARAMETERS:
         return check_positive_integer(name, value)
+    if name == "g":
+        return check_positive_integer("g", value, minimum=0)
     if name == "rho":
         return check_correlation("rho", value)
     if name in ("var_x", "var_y"):
@@ -95,14 +98,14 @@ def _to_sympy_any(name: str, value: Any) -> sp.Expr:
 def _check_array(name: str, value: Any, minimum_samples: int) -> np.ndarray:
     """Array form of :func:`_check_scalar` for ``numeric``: integer dtypes for N and bins."""
     if np.ndim(value) == 0:
-        if name == "N" or name in _BIN_PARAMETERS:
+        if name == "N" or name in _BIN_PARAMETERS or name == "g":
             return np.asarray(float(_check_scalar(name, value, minimum_samples)))
         return np.asarray(float(_check_scalar(name, value, minimum_samples)), dtype=np.float64)
     array = np.asarray(value)
-    if name == "N" or name in _BIN_PARAMETERS:
+    if name == "N" or name in _BIN_PARAMETERS or name == "g":
         if array.dtype.kind not in "iu":
             raise TypeError(f"{name}={value!r}: must be an integer array (dtype {array.dtype} given)")
-        minimum = minimum_samples if name == "N" else 1
+        minimum = minimum_samples if name == "N" else 0 if name == "g" else 1
         if array.size and array.min() < minimum:
             bad = array.flat[int(np.argmin(array))].item()
             raise ValueError(f"{name}={bad!r}: must be an integer >= {minimum}")
@@ -434,6 +437,59 @@ _ENTRIES = [
         "TIM 2014 eq. (9), generalised to unequal variances, exact for every N",
         "Variance of the carouselled estimate: (var_x + var_y)/(2N) for N >= 3, var_y/2 at N = 2, "
         "var_y at N = 1.",
+    ),
+    # --- 2- and 4-position indexing (beyond TIM 2014; proofs/proof_indexing_variances.py) ----------
+    *(
+        Formula(
+            f"indexing{positions}_{process}_var",
+            parameters,
+            expression,
+            f"{positions}-position indexing of two horizontal gyros, k whole cycles of {positions} dwells of "
+            f"N samples{gap}; demodulated mean (carousel_theory.rotation_schemes); {assumption}",
+            "TIM 2014 §III propagation (eqs. (12)-(17)) extended to indexing, a case beyond the paper; "
+            "exact for every k >= 1, N >= 1",
+            f"Variance of each horizontal Earth-rate component (they are uncorrelated): {text}.",
+        )
+        for positions, process, parameters, expression, gap, assumption, text in (
+            (
+                2,
+                "bias",
+                ("N", "k"),
+                cf.INDEXING2_BIAS_VARIANCE,
+                "",
+                "unit random-constant biases (eq. (1))",
+                "0, the bias cancels in every cycle",
+            ),
+            (2, "white", ("N", "k"), cf.INDEXING2_WHITE_VARIANCE, "", "unit-variance white noise", "1/(2kN)"),
+            (
+                2,
+                "rrw",
+                ("N", "k", "g"),
+                cf.INDEXING2_RRW_VARIANCE,
+                ", each followed by g dropped transition samples",
+                _RRW,
+                "(2N² + 3gN + 1)/(12kN)",
+            ),
+            (
+                4,
+                "bias",
+                ("N", "k"),
+                cf.INDEXING4_BIAS_VARIANCE,
+                "",
+                "unit random-constant biases (eq. (1))",
+                "0, the bias cancels in every cycle",
+            ),
+            (4, "white", ("N", "k"), cf.INDEXING4_WHITE_VARIANCE, "", "unit-variance white noise", "1/(4kN)"),
+            (
+                4,
+                "rrw",
+                ("N", "k", "g"),
+                cf.INDEXING4_RRW_VARIANCE,
+                ", each followed by g dropped transition samples",
+                _RRW,
+                "(5N² + 6gN + 1)/(24kN)",
+            ),
+        )
     ),
 ]
 
