@@ -280,7 +280,7 @@ def _samples(text: str, key: str, seconds: float, sample_rate: float) -> int:
             f"scheme={text!r}: {key}={seconds!r} s is {count!r} samples at {sample_rate!r} Hz: "
             "must be a whole number of samples"
         )
-    return int(round(count))
+    return round(count)
 
 
 def _parse_carousel(text: str, options: dict[str, str], sample_rate: float, two_axis: bool) -> Any:

@@ -81,7 +81,7 @@ def step_3_one_gyro_one_cycle():
 
 
 def step_4_k_cycles():
-    """Cycles decouple (each sums to 0): Var_RRW = 2 k h² (N(2N² + 1)/3 + (N + 2g)N²) — the registry's form."""
+    """Cycles decouple (each sums to 0): Var_RRW = 2 k h² (N(2N² + 1)/3 + (N + 2g)N²), the registry's form."""
     value = 2 * k * h**2 * (N * (2 * N**2 + 1) / 3 + (N + 2 * g) * N**2)
     assert sp.simplify(value - INDEXING4_RRW_VARIANCE) == 0
 
