@@ -46,12 +46,13 @@ __all__ = [
 
 # --- leading-order heading errors (SymPy, radians) ---------------------------------------------------
 
-_sigma_e, _n, _beta = sp.symbols("sigma_e n beta", positive=True)
+_sigma_e, _n, _beta, _Omega = sp.symbols("sigma_e n beta Omega", positive=True)
 _epsilon, _a, _omega_r, _L, _k_x, _k_y, _psi, _sigma_nu, _B = sp.symbols(
     "epsilon a omega_r L k_x k_y psi sigma_nu B", real=True
 )
 
 #: Leading-order heading errors: name → (expression, kind: "variance" (rad²) or "bias" (rad), meaning).
+#: Ω is the Earth rate (substitute :data:`carousel_theory.heading.EARTH_RATE`), L the latitude (rad).
 LEADING_ORDER: dict[str, tuple[sp.Expr, str, str]] = {
     "angle_bias": (-_beta, "bias", "encoder offset β: Ω̂ = R(β)E exactly, the heading moves by −β"),
     "angle_noise": (
@@ -60,9 +61,10 @@ LEADING_ORDER: dict[str, tuple[sp.Expr, str, str]] = {
         "encoder white noise σ_e over n used samples: Var(sin e)/n, exact cross-track variance / |E|²",
     ),
     "angle_noise_bias_coupling": (
-        _B**2 * (1 - sp.exp(-(_sigma_e**2))) / (_n * (7.292115e-5 * sp.cos(_L)) ** 2),
+        _B**2 * (1 - sp.exp(-(_sigma_e**2))) / (_n * (_Omega * sp.cos(_L)) ** 2),
         "variance",
-        "encoder noise also modulates each gyro's bias (random, standard deviation B): B²(1 − e^{−σ_e²})/(n|E|²)",
+        "encoder noise also modulates each gyro's bias (random, standard deviation B): "
+        "B²(1 − e^{−σ_e²})/(n|E|²), |E| = Ω cos L",
     ),
     "rate_noise": (
         _sigma_nu**2 * (_n + 1) * (2 * _n + 1) / (6 * _n),
@@ -71,11 +73,11 @@ LEADING_ORDER: dict[str, tuple[sp.Expr, str, str]] = {
         "the RRW average variance of TIM 2014 eq. (15)",
     ),
     "misalignment_wobble": (
-        sp.sin(_epsilon) * _a * _omega_r / (2 * 7.292115e-5 * sp.cos(_L)),
+        sp.sin(_epsilon) * _a * _omega_r / (2 * _Omega * sp.cos(_L)),
         "bias",
         "tilt ε of one gyro toward the rotation axis and a once-per-turn rate wobble of relative size a at "
         "rate ω_r, demodulated at the nominal angle: |δ| = sin ε · a ω_r / 2, the largest heading error over "
-        "the wobble's phase (with the measured angle, Σ φ̇ cos φ̂ Δt ≈ ∮ cos φ dφ = 0 and the coupling cancels)",
+        "the wobble's phase (with the measured angle, Σ φ̇ cos φ̂ Δt ≈ ∮ cos φ dφ = 0: the coupling cancels)",
     ),
     "scale_mismatch": (
         (_k_y - _k_x) * sp.sin(2 * _psi) / 2,
