@@ -235,6 +235,9 @@ def imperfection_effect(
 ) -> ImperfectionEffect:
     """The systematic error and the added covariance of (Ω̂_x, Ω̂_y) under ``imperfections``.
 
+    The systematic error holds the deterministic imperfections exactly and the shortening E[cos e] of
+    the random angle errors (whose product with the deterministic ones is neglected).
+
     ``bias_sigma`` (rad/s) is the standard deviation of each gyro's random turn-on bias, which the
     encoder noise modulates.
     """
@@ -256,8 +259,12 @@ def imperfection_effect(
         variances += imperfections.angle_noise**2
     else:
         variances += (nominal_rate * imperfections.timing_jitter) ** 2
-    if np.any(variances > 0):
-        covariance += _angle_noise_covariance(pattern, variances, earth_rate, bias_sigma)
+    walk = np.zeros_like(variances)
     if imperfections.rate_noise > 0 and not imperfections.measured_angles:
         covariance += _rate_noise_covariance(pattern, imperfections.rate_noise, earth_rate)
-    return ImperfectionEffect(bias=bias, covariance=covariance)
+        walk = imperfections.rate_noise**2 * np.arange(1, walk.shape[0] + 1)
+    if np.any(variances > 0):
+        covariance += _angle_noise_covariance(pattern, variances, earth_rate, bias_sigma)
+    # a random angle error e shortens the mean by E[cos e] = e^{−Var e/2} (along E: no heading error)
+    shrink = float(np.mean(np.exp(-(variances + walk)[pattern.used] / 2)))
+    return ImperfectionEffect(bias=bias + (shrink - 1) * earth_rate[:2], covariance=covariance)
