@@ -80,7 +80,7 @@ def _column_model(name: str, column: dict[str, Any], sample_rate: float | None) 
     rate = values.get("sample_rate", sample_rate)
     if rate is None:
         raise ValueError(f"noise column {name!r}: no sample_rate in the file")
-    found = {}
+    found: dict[str, float] = {}
     for key, aliases in _ALIASES.items():
         for alias in aliases:
             if values.get(alias) is not None:
@@ -88,7 +88,13 @@ def _column_model(name: str, column: dict[str, Any], sample_rate: float | None) 
                 break
     if "white_variance" not in found:
         raise ValueError(f"noise column {name!r}: no white_variance (keys: {sorted(values)})")
-    return NoiseModel(sample_rate=float(rate), **found)
+    return NoiseModel(
+        sample_rate=float(rate),
+        white_variance=found["white_variance"],
+        rrw_variance=found.get("rrw_variance", 0.0),
+        flicker_variance=found.get("flicker_variance", 0.0),
+        flicker_d=found.get("flicker_d", 0.5),
+    )
 
 
 def noise_models_from_fit_json(source: str | Path | dict[str, Any]) -> tuple[list[NoiseModel], float]:

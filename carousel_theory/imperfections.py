@@ -259,7 +259,7 @@ def imperfection_effect(
         variances += imperfections.angle_noise**2
     else:
         variances += (nominal_rate * imperfections.timing_jitter) ** 2
-    walk = np.zeros_like(variances)
+    walk: np.ndarray = np.zeros_like(variances)
     if imperfections.rate_noise > 0 and not imperfections.measured_angles:
         covariance += _rate_noise_covariance(pattern, imperfections.rate_noise, earth_rate)
         walk = imperfections.rate_noise**2 * np.arange(1, walk.shape[0] + 1)
