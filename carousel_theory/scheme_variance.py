@@ -33,6 +33,8 @@ from carousel_theory.rotation_schemes import SchemePattern
 
 __all__ = ["PROCESS_TERMS", "EstimateCovariance", "estimate_covariances", "unit_covariances"]
 
+_QUARTER_TURN = np.array([[0.0, -1.0], [1.0, 0.0]])
+
 #: The error processes whose covariances are reported, in this order.
 PROCESS_TERMS = ("bias", "white", "rrw", "flicker")
 
@@ -56,24 +58,37 @@ class EstimateCovariance:
         return self.bias + self.white + self.rrw + self.flicker
 
 
+def _sums_up_to(values: np.ndarray, lengths: np.ndarray) -> np.ndarray:
+    """Σ_{t<n} values[..., t] for each n of the increasing, distinct ``lengths`` (segment sums, then a
+    cumulative sum over the few segments: no array of n prefix sums is written)."""
+    starts = np.concatenate([[0], lengths[:-1]])
+    return np.cumsum(np.add.reduceat(values[..., : lengths[-1]], starts, axis=-1), axis=-1)
+
+
 def _prefix_covariances(U: np.ndarray, lengths: np.ndarray) -> dict[str, np.ndarray]:
     """Unnormalised bias, white and RRW covariances for every length; shape (len(lengths), c, c)."""
-    S = np.cumsum(U, axis=1)
-    P = np.concatenate([np.zeros((U.shape[0], 1)), S[:, :-1]], axis=1)  # P(i) = Σ_{t<i}
-    Q = np.cumsum(P, axis=1)
-    index = lengths - 1
-    S_n, Q_n = S[:, index], Q[:, index]  # (c, L)
-    white = np.cumsum(U[:, np.newaxis, :] * U[np.newaxis, :, :], axis=2)[:, :, index]
-    squares = np.cumsum(P[:, np.newaxis, :] * P[np.newaxis, :, :], axis=2)[:, :, index]
+    distinct, position = np.unique(lengths, return_inverse=True)
+    U = U[:, : distinct[-1]]
+    P = np.concatenate([np.zeros((U.shape[0], 1)), np.cumsum(U[:, :-1], axis=1)], axis=1)  # P(i) = Σ_{t<i}
+    S_n = _sums_up_to(U, distinct)
+    Q_n = _sums_up_to(P, distinct)
+    c = U.shape[0]
+    white = np.empty((c, c, distinct.shape[0]))
+    squares = np.empty_like(white)
+    for a in range(c):
+        for b in range(a, c):
+            white[a, b] = white[b, a] = _sums_up_to(U[a] * U[b], distinct)
+            squares[a, b] = squares[b, a] = _sums_up_to(P[a] * P[b], distinct)
     outer = S_n[:, np.newaxis, :] * S_n[np.newaxis, :, :]
     rrw = (
-        lengths * outer
+        distinct * outer
         - S_n[:, np.newaxis, :] * Q_n[np.newaxis, :, :]
         - Q_n[:, np.newaxis, :] * S_n[np.newaxis, :, :]
         + squares
     )
     return {
-        name: np.moveaxis(value, 2, 0) for name, value in (("bias", outer), ("white", white), ("rrw", rrw))
+        name: np.moveaxis(value, 2, 0)[position]
+        for name, value in (("bias", outer), ("white", white), ("rrw", rrw))
     }
 
 
@@ -106,6 +121,32 @@ def unit_covariances(
     return result
 
 
+def _per_gyro(
+    pattern: SchemePattern, lengths: np.ndarray, models: list[NoiseModel]
+) -> list[tuple[NoiseModel, dict[str, np.ndarray]]]:
+    """(noise model, unit covariances) of each gyro that enters the estimate.
+
+    About the vertical the y gyro's weights are J times the x gyro's (J = [[0, −1], [1, 0]]), so its
+    covariances are J C Jᵀ of the x gyro's whenever both have the same 1/f order (or none); the z gyro
+    never enters the horizontal estimate.
+    """
+    planar = pattern.components == 2 and bool(np.all(pattern.rotations[:, 2, 2] == 1.0))
+    result: list[tuple[NoiseModel, dict[str, np.ndarray]]] = []
+    for gyro in range(2 if planar else 3):
+        model = models[min(gyro, len(models) - 1)]
+        order = _order(model)
+        if planar and gyro == 1 and order == _order(result[0][0]):
+            unit = {name: _QUARTER_TURN @ value @ _QUARTER_TURN.T for name, value in result[0][1].items()}
+        else:
+            unit = unit_covariances(pattern, lengths, gyro, order)
+        result.append((model, unit))
+    return result
+
+
+def _order(model: NoiseModel) -> float | None:
+    return model.flicker_d if model.flicker_variance > 0 else None
+
+
 def estimate_covariances(
     pattern: SchemePattern,
     lengths: Any,
@@ -127,12 +168,7 @@ def estimate_covariances(
         )
     c = pattern.components
     totals = {name: np.zeros((lengths.shape[0], c, c)) for name in PROCESS_TERMS}
-    for gyro in range(3):
-        if not np.any(pattern.rotations[:, :c, gyro]):
-            continue  # the z gyro of a rotation about the vertical never enters the horizontal estimate
-        model = models[min(gyro, len(models) - 1)]
-        flicker_d = model.flicker_d if model.flicker_variance > 0 else None
-        unit = unit_covariances(pattern, lengths, gyro, flicker_d)
+    for model, unit in _per_gyro(pattern, lengths, models):
         variances = {
             "bias": bias_variance,
             "white": model.white_variance,

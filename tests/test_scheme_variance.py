@@ -159,3 +159,18 @@ def test_estimate_covariances_scales_each_process_by_its_gyro_variance():
 def test_invalid_calls(call, error, message):
     with pytest.raises(error, match=message):
         call()
+
+
+@pytest.mark.parametrize("scheme", SCHEMES, ids=lambda s: type(s).__name__)
+def test_the_y_gyro_shortcut_equals_its_own_propagation(scheme):
+    """About the vertical the y gyro's covariances are J C Jᵀ of the x gyro's; checked against gyro 1 itself."""
+    model = NoiseModel(100.0, white_variance=2.0, rrw_variance=0.5, flicker_variance=0.25, flicker_d=D)
+    pattern = scheme.pattern(30)
+    lengths = [7, 30]
+    result = estimate_covariances(pattern, lengths, [model], bias_variance=3.0)
+    gyros = (0, 1) if pattern.components == 2 else (0, 1, 2)
+    units = [unit_covariances(pattern, lengths, gyro, d=D) for gyro in gyros]
+    for index in range(2):
+        for name, variance in (("bias", 3.0), ("white", 2.0), ("rrw", 0.5), ("flicker", 0.25)):
+            expected = variance * sum(unit[name][index] for unit in units)
+            np.testing.assert_allclose(getattr(result[index], name), expected, rtol=1e-12, atol=1e-15)
