@@ -163,7 +163,7 @@ def test_invalid_calls(call, error, message):
 
 @pytest.mark.parametrize("scheme", SCHEMES, ids=lambda s: type(s).__name__)
 def test_the_y_gyro_shortcut_equals_its_own_propagation(scheme):
-    """About the vertical the y gyro's covariances are J C Jᵀ of the x gyro's; checked against gyro 1 itself."""
+    """About the vertical the y gyro's covariances are J C Jᵀ of the x gyro's; checked against gyro 1."""
     model = NoiseModel(100.0, white_variance=2.0, rrw_variance=0.5, flicker_variance=0.25, flicker_d=D)
     pattern = scheme.pattern(30)
     lengths = [7, 30]
