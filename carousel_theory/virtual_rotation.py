@@ -2,7 +2,8 @@
 
 A static recording of two horizontal gyros holds their noise and a constant (bias plus the Earth-rate
 projection). Demodulating it with a scheme's weights
-(:func:`carousel_theory.rotation_schemes.demodulation_weights`) segment by segment gives the estimates the scheme would have produced had the unit turned, under the
+(:func:`carousel_theory.rotation_schemes.demodulation_weights`) segment by segment gives the
+estimates the scheme would have produced had the unit turned, under the
 assumption that the noise does not depend on the rotation (the check TIM 2014 §V-C makes for
 carouseling, here for every scheme). Over whole cycles the constant cancels exactly, so each segment
 estimate is noise only; its exact variance under a noise model is, for segment m = 1 … M, the bin
