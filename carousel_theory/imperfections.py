@@ -32,9 +32,11 @@ from dataclasses import dataclass, fields
 import numpy as np
 import sympy as sp
 
+from carousel_theory import closed_forms as cf
 from carousel_theory._validation import check_positive_integer, check_positive_real, check_real
 from carousel_theory.heading import EARTH_RATE, check_latitude
 from carousel_theory.rotation_schemes import SchemePattern
+from carousel_theory.symbols import n, sigma_e
 
 __all__ = [
     "LEADING_ORDER",
@@ -46,41 +48,43 @@ __all__ = [
 
 # --- leading-order heading errors (SymPy, radians) ---------------------------------------------------
 
-_sigma_e, _n, _beta, _Omega = sp.symbols("sigma_e n beta Omega", positive=True)
-_epsilon, _a, _omega_r, _L, _k_x, _k_y, _psi, _sigma_nu, _B = sp.symbols(
-    "epsilon a omega_r L k_x k_y psi sigma_nu B", real=True
-)
+_Omega, _L, _B = sp.Symbol("Omega", positive=True), sp.Symbol("L", real=True), sp.Symbol("B", real=True)
 
 #: Leading-order heading errors: name → (expression, kind: "variance" (rad²) or "bias" (rad), meaning).
 #: Ω is the Earth rate (substitute :data:`carousel_theory.heading.EARTH_RATE`), L the latitude (rad).
+#: The registry's forms (:mod:`carousel_theory.closed_forms`) are used where they exist.
 LEADING_ORDER: dict[str, tuple[sp.Expr, str, str]] = {
-    "angle_bias": (-_beta, "bias", "encoder offset β: Ω̂ = R(β)E exactly, the heading moves by −β"),
+    "angle_bias": (
+        cf.HEADING_ANGLE_BIAS,
+        "bias",
+        "encoder offset β: Ω̂ = R(β)E exactly, the heading moves by −β",
+    ),
     "angle_noise": (
-        (1 - sp.exp(-2 * _sigma_e**2)) / (2 * _n),
+        cf.HEADING_ENCODER_NOISE_VARIANCE,
         "variance",
         "encoder white noise σ_e over n used samples: Var(sin e)/n, exact cross-track variance / |E|²",
     ),
     "angle_noise_bias_coupling": (
-        _B**2 * (1 - sp.exp(-(_sigma_e**2))) / (_n * (_Omega * sp.cos(_L)) ** 2),
+        _B**2 * (1 - sp.exp(-(sigma_e**2))) / (n * (_Omega * sp.cos(_L)) ** 2),
         "variance",
         "encoder noise also modulates each gyro's bias (random, standard deviation B): "
         "B²(1 − e^{−σ_e²})/(n|E|²), |E| = Ω cos L",
     ),
     "rate_noise": (
-        _sigma_nu**2 * (_n + 1) * (2 * _n + 1) / (6 * _n),
+        cf.HEADING_ANGLE_WALK_VARIANCE,
         "variance",
         "unmeasured angle random walk (σ_ν per sample): the heading error is the mean of the walk, "
         "the RRW average variance of TIM 2014 eq. (15)",
     ),
     "misalignment_wobble": (
-        sp.sin(_epsilon) * _a * _omega_r / (2 * _Omega * sp.cos(_L)),
+        cf.RATE_ERROR_MISALIGNMENT_WOBBLE / (_Omega * sp.cos(_L)),
         "bias",
         "tilt ε of one gyro toward the rotation axis and a once-per-turn rate wobble of relative size a at "
         "rate ω_r, demodulated at the nominal angle: |δ| = sin ε · a ω_r / 2, the largest heading error over "
         "the wobble's phase (with the measured angle, Σ φ̇ cos φ̂ Δt ≈ ∮ cos φ dφ = 0: the coupling cancels)",
     ),
     "scale_mismatch": (
-        (_k_y - _k_x) * sp.sin(2 * _psi) / 2,
+        cf.HEADING_SCALE_MISMATCH,
         "bias",
         "unequal scale factors k_x, k_y under static averaging or 2-position indexing (each component from "
         "one gyro); zero for carouseling and 4-position indexing, where each component averages both",
