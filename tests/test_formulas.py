@@ -51,7 +51,11 @@ SAMPLE = {
     "indexing4_bias_var": {"N": 5, "k": 2},
     "indexing4_rrw_var": {"N": 5, "k": 2, "g": 3},
     "indexing4_white_var": {"N": 5, "k": 2},
-    "rate_error_misalignment_wobble": {"epsilon": Fraction(1, 1000), "wobble": Fraction(1, 100), "omega_r": 3},
+    "rate_error_misalignment_wobble": {
+        "epsilon": Fraction(1, 1000),
+        "wobble": Fraction(1, 100),
+        "omega_r": 3,
+    },
     "rrw_average_cov": {"N": 5, "a": 2, "b": 4},
     "rrw_average_var": {"N": 5, "k": 3},
     "rrw_carousel_cov": {"N": 5, "a": 3, "b": 3},

@@ -70,7 +70,8 @@ def test_misalignment_with_open_loop_wobble_against_leading_order(tilt, wobble):
     omega = 2 * math.pi * RATE / 200
     magnitude = EARTH_RATE * math.cos(math.radians(LATITUDE))
     coupling = np.linalg.norm(effect.bias - reference.bias) / magnitude
-    leading = _value("misalignment_wobble", epsilon=tilt, wobble=wobble, omega_r=omega, L=math.radians(LATITUDE))
+    latitude = math.radians(LATITUDE)
+    leading = _value("misalignment_wobble", epsilon=tilt, wobble=wobble, omega_r=omega, L=latitude)
     assert abs(coupling - leading) <= 0.02 * leading
 
 
@@ -82,7 +83,8 @@ def test_measured_angles_cancel_the_rate_coupling_to_discretisation_order():
         imperfection_effect(pattern, tilted, LATITUDE, HEADING, RATE).bias
         - imperfection_effect(pattern, base, LATITUDE, HEADING, RATE).bias
     )
-    open_loop = _value("misalignment_wobble", epsilon=1e-3, wobble=0.01, omega_r=math.pi, L=math.radians(LATITUDE))
+    latitude = math.radians(LATITUDE)
+    open_loop = _value("misalignment_wobble", epsilon=1e-3, wobble=0.01, omega_r=math.pi, L=latitude)
     assert np.linalg.norm(difference) / (EARTH_RATE * math.cos(math.radians(LATITUDE))) < 1e-3 * open_loop
 
 
