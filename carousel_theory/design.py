@@ -33,6 +33,7 @@ from carousel_theory.scheme_variance import PROCESS_TERMS, estimate_covariances
 __all__ = [
     "DesignSettings",
     "SchemeResult",
+    "average_noise_models",
     "default_schemes",
     "evaluate_scheme",
     "noise_models_from_fit_json",
@@ -117,11 +118,13 @@ def noise_models_from_fit_json(source: str | Path | dict[str, Any]) -> tuple[lis
                 per_column.setdefault(name, []).append(_column_model(name, columns[name], rate))
     if not per_column:
         raise ValueError(f"noise={source!r}: holds no gyro column with a model")
-    models = [_average(models) for _, models in sorted(per_column.items())]
+    models = [average_noise_models(models) for _, models in sorted(per_column.items())]
     return models, models[0].sample_rate
 
 
-def _average(models: list[NoiseModel]) -> NoiseModel:
+def average_noise_models(models: Sequence[NoiseModel]) -> NoiseModel:
+    """The mean of several noise models' variances and 1/f orders (at the first one's sample rate)."""
+
     def mean(name: str) -> float:
         return float(np.mean([getattr(model, name) for model in models]))
 

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from carousel_theory.data import load_recording
-from carousel_theory.design import DesignSettings, SchemeResult, evaluate_scheme
+from carousel_theory.design import DesignSettings, SchemeResult, average_noise_models, evaluate_scheme
 from carousel_theory.fitting import NoiseModel, fit_noise_model
 from carousel_theory.heading import EARTH_RATE
 from carousel_theory.imperfections import Imperfections
@@ -81,19 +81,6 @@ def _fit_runs(data: Path) -> list[Run]:
         rates = np.stack([recordings[name].rates["wx"], recordings[name].rates["wy"]])
         runs.append(Run(Path(name).stem, rates, (fitted[name, "wx"], fitted[name, "wy"])))
     return runs
-
-
-def _mean_model(models: list[NoiseModel]) -> NoiseModel:
-    def mean(field: str) -> float:
-        return float(np.mean([getattr(model, field) for model in models]))
-
-    return NoiseModel(
-        RATE,
-        white_variance=mean("white_variance"),
-        rrw_variance=mean("rrw_variance"),
-        flicker_variance=mean("flicker_variance"),
-        flicker_d=mean("flicker_d"),
-    )
 
 
 def _noise_section(runs: list[Run], pooled: list[NoiseModel], bias_sigma: float) -> list[str]:
@@ -290,7 +277,7 @@ def _linearisation_lines(results: dict[str, dict[float, SchemeResult]]) -> list[
 def build_document(data: Path) -> str:
     """The markdown of docs/rotation_schemes.md from the recordings under ``data``."""
     runs = _fit_runs(data)
-    pooled = [_mean_model([run.models[axis] for run in runs]) for axis in (0, 1)]
+    pooled = [average_noise_models([run.models[axis] for run in runs]) for axis in (0, 1)]
     bias_sigma = _bias_sigma(runs)
     results = _evaluate(pooled, bias_sigma)
     lines = [
