@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -244,7 +245,7 @@ def demodulation_weights(pattern: SchemePattern) -> np.ndarray:
 
 # --- the scheme text of `carousel-theory design` ---------------------------------------------------
 
-_KINDS = ("static", "carousel", "indexing", "two-axis")
+_KINDS = ("static", "carousel", "indexing", "two-axis", "profile")
 
 
 def _options(text: str, body: str) -> dict[str, str]:
@@ -321,12 +322,24 @@ def _parse_indexing(text: str, options: dict[str, str], sample_rate: float) -> I
     return Indexing(int(positions), dwell, transition, mode == "use")
 
 
+def _read_profile(text: str, path: Path) -> MeasuredProfile:
+    """A measured angle profile from a .npy file or a text file with one angle (rad) a line (read only)."""
+    if not path.is_file():
+        raise ValueError(f"scheme={text!r}: file={str(path)!r} does not exist")
+    try:
+        angles = np.load(path, allow_pickle=False) if path.suffix == ".npy" else np.loadtxt(path, ndmin=1)
+    except ValueError as error:
+        raise ValueError(f"scheme={text!r}: file={str(path)!r} holds no column of angles ({error})") from None
+    return MeasuredProfile.from_array(np.ravel(angles))
+
+
 def parse_scheme(text: str, sample_rate: float) -> Any:
     """The scheme described by ``text`` at ``sample_rate`` Hz; ValueError naming the text otherwise.
 
     ``static``; ``carousel:N=200`` (samples a turn, any real ≥ 2) or ``carousel:period=2`` (s);
     ``indexing:positions=4,dwell=10,transition=1[,transitions=use]`` (seconds; transitions are
-    dropped by default); ``two-axis:N=200`` or ``two-axis:period=2``.
+    dropped by default); ``two-axis:N=200`` or ``two-axis:period=2``; ``profile:file=PATH`` (measured
+    angles in rad, one per sample, repeated when the record is longer).
     """
     if not isinstance(text, str):
         raise TypeError(f"scheme={text!r}: must be a string such as 'carousel:N=200'")
@@ -340,6 +353,13 @@ def parse_scheme(text: str, sample_rate: float) -> Any:
         return Static()
     if kind == "indexing":
         return _parse_indexing(text, options, sample_rate)
+    if kind == "profile":
+        _refuse_unknown(text, options, ("file",))
+        if "file" not in options:
+            raise ValueError(
+                f"scheme={text!r}: a profile needs file=PATH (.npy, or text with one angle in rad a line)"
+            )
+        return _read_profile(text, Path(options["file"]))
     return _parse_carousel(text, options, sample_rate, two_axis=kind == "two-axis")
 
 
@@ -356,4 +376,4 @@ def scheme_label(scheme: Any, sample_rate: float) -> str:
             f"transition={scheme.transition / sample_rate:g}"
         )
         return label + (",transitions=use" if scheme.use_transitions else "")
-    return "profile"
+    return f"profile ({len(scheme.angles)} angles)"

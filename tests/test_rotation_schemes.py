@@ -148,3 +148,31 @@ def test_invalid_calls(call, error, message):
 
 def test_all_is_honest():
     assert public_functions(rotation_schemes) <= set(rotation_schemes.__all__)
+
+
+def test_profile_from_a_file_is_read_and_repeated(tmp_path):
+    angles = np.array([0.0, 1.5, 3.0, 4.5])
+    np.save(tmp_path / "angles.npy", angles)
+    (tmp_path / "angles.txt").write_text("\n".join(str(a) for a in angles), encoding="utf-8")
+    for name in ("angles.npy", "angles.txt"):
+        scheme = parse_scheme(f"profile:file={tmp_path / name}", 100.0)
+        assert scheme == MeasuredProfile.from_array(angles)
+        pattern = scheme.pattern(6)
+        np.testing.assert_allclose(
+            np.arctan2(pattern.rotations[:, 1, 0], pattern.rotations[:, 0, 0])[4:], [0, 1.5]
+        )
+
+
+@pytest.mark.parametrize(
+    ("make", "message"),
+    [
+        (lambda path: None, "does not exist"),
+        (lambda path: path.write_text("a\nb\n", encoding="utf-8"), "holds no column of angles"),
+    ],
+    ids=["missing", "not-numbers"],
+)
+def test_bad_profile_file(tmp_path, make, message):
+    path = tmp_path / "angles.txt"
+    make(path)
+    with pytest.raises(ValueError, match=message):
+        parse_scheme(f"profile:file={path}", 100.0)

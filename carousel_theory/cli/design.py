@@ -56,7 +56,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "estimate across the true Earth rate and the heading error (linearised σ and exact RMS), and "
             "recommend the "
             "scheme with the smallest error at the longest duration. Schemes: static, carousel:N=200 or "
-            "carousel:period=2 (s a turn), indexing:positions=4,dwell=10,transition=1 (s), two-axis:N=200; "
+            "carousel:period=2 (s a turn), indexing:positions=4,dwell=10,transition=1 (s), two-axis:N=200, "
+            "profile:file=ANGLES.npy (measured angles, rad); "
             "none given: a built-in sweep of carousel periods and indexing dwells."
         ),
     )
