@@ -7,6 +7,8 @@ import math
 import numpy as np
 import pytest
 import sympy as sp
+from hypothesis import example, given
+from hypothesis import strategies as st
 
 from carousel_theory import imperfections as module
 from carousel_theory.heading import EARTH_RATE, horizontal_earth_rate
@@ -184,3 +186,37 @@ def test_invalid_calls(call, error, message):
 
 def test_all_is_honest():
     assert public_functions(module) <= set(module.__all__)
+
+
+@given(
+    sigma=st.floats(0.0, 1.5),
+    turns=st.integers(1, 5),
+    per_turn=st.integers(3, 40),
+    heading=st.floats(-180.0, 180.0),
+)
+@example(sigma=0.0, turns=1, per_turn=3, heading=0.0)
+def test_registry_encoder_noise_form_is_the_exact_cross_track_variance(sigma, turns, per_turn, heading):
+    from carousel_theory.formulas import formula
+
+    length = turns * per_turn
+    effect = imperfection_effect(
+        Carousel(per_turn).pattern(length), Imperfections(angle_noise=sigma), LATITUDE, heading, RATE
+    )
+    earth = horizontal_earth_rate(LATITUDE, heading)
+    across = np.array([earth[1], -earth[0]]) / np.linalg.norm(earth)
+    variance = across @ effect.covariance @ across / float(earth @ earth)
+    expected = formula("heading_encoder_noise_var").numeric(sigma_e=sigma, n=length)
+    assert math.isclose(variance, expected, rel_tol=1e-9, abs_tol=1e-300)
+
+
+@given(beta=st.floats(-0.5, 0.5), heading=st.floats(-180.0, 180.0), per_turn=st.floats(3.0, 50.0))
+def test_registry_angle_bias_form_is_exact_for_any_carousel(beta, heading, per_turn):
+    from carousel_theory.formulas import formula
+
+    effect = imperfection_effect(
+        Carousel(per_turn).pattern(97), Imperfections(angle_bias=beta), LATITUDE, heading, RATE
+    )
+    earth = horizontal_earth_rate(LATITUDE, heading)
+    x, y = earth + effect.bias
+    shift = math.remainder(math.atan2(-y, x) - math.radians(heading), 2 * math.pi)
+    assert abs(shift - formula("heading_angle_bias").numeric(beta=beta)) < 1e-9
