@@ -22,13 +22,50 @@ from fractions import Fraction
 import sympy as sp
 
 from carousel_theory._validation import check_positive_integer
-from carousel_theory.symbols import N, a, alpha, b, h, k, m, rho, theta, u, var_x, var_y, x, y
+from carousel_theory.symbols import (
+    N,
+    a,
+    alpha,
+    b,
+    beta,
+    epsilon,
+    g,
+    h,
+    k,
+    k_x,
+    k_y,
+    m,
+    n,
+    omega_r,
+    psi,
+    rho,
+    sigma_e,
+    sigma_nu,
+    theta,
+    u,
+    var_x,
+    var_y,
+    wobble,
+    x,
+    y,
+)
 
 __all__ = [
     "BIAS_CAROUSEL_RESIDUAL",
     "BIAS_COSINE_RESIDUAL",
     "BIAS_SINE_RESIDUAL",
     "COSINE_SQUARES_SUM",
+    "HEADING_ANGLE_BIAS",
+    "HEADING_ANGLE_WALK_VARIANCE",
+    "HEADING_ENCODER_NOISE_VARIANCE",
+    "HEADING_SCALE_MISMATCH",
+    "INDEXING2_BIAS_VARIANCE",
+    "INDEXING2_RRW_VARIANCE",
+    "INDEXING2_WHITE_VARIANCE",
+    "INDEXING4_BIAS_VARIANCE",
+    "INDEXING4_RRW_VARIANCE",
+    "INDEXING4_WHITE_VARIANCE",
+    "RATE_ERROR_MISALIGNMENT_WOBBLE",
     "RRW_AVERAGE_COVARIANCE",
     "RRW_AVERAGE_FIRST_BIN_VARIANCE",
     "RRW_AVERAGE_VARIANCE",
@@ -288,3 +325,49 @@ def rectangle_rule_steps(weight: str = "sine") -> list[tuple[str, sp.Expr]]:
         ("integral of the numerator", outer),
         ("result", result),
     ]
+
+
+# --------------------------------------------------------------------------------------------
+# Beyond TIM 2014: 2- and 4-position indexing (maytagging) of the two-gyro unit, k whole cycles,
+# N samples per dwell, g transition samples after each dwell (dropped from the estimate).
+# Ω̂ = (1/n_used) Σ R_z(φ_t) ω_t (carousel_theory.rotation_schemes); each horizontal component
+# weights each dwell's samples with ±1/(P k N) or 0. The suffix sums of these weights are linear
+# ramps inside a dwell and constant across a gap, so Σ_i (Σ_{t≥i} w_t)² has the closed form below
+# (proofs/proof_indexing_variances.py). Both components have this variance; they are uncorrelated.
+# --------------------------------------------------------------------------------------------
+
+#: A unit random-constant bias (TIM 2014 eq. (1)) on each gyro leaves nothing: each cycle's weights sum to 0.
+INDEXING2_BIAS_VARIANCE = sp.Integer(0)
+#: White noise, unit variance: 2kN samples weighted ±1/(2kN) on one gyro.
+INDEXING2_WHITE_VARIANCE = 1 / (2 * k * N)
+#: Rate random walk, unit increment variance: (2N² + 3gN + 1)/(12kN).
+INDEXING2_RRW_VARIANCE = (2 * N**2 + 3 * g * N + 1) / (12 * k * N)
+#: 4 positions: the bias cancels as well.
+INDEXING4_BIAS_VARIANCE = sp.Integer(0)
+#: White noise, unit variance: each gyro weighted ±1/(4kN) on 2kN samples, both gyros.
+INDEXING4_WHITE_VARIANCE = 1 / (4 * k * N)
+#: Rate random walk, unit increment variance: (5N² + 6gN + 1)/(24kN).
+INDEXING4_RRW_VARIANCE = (5 * N**2 + 6 * g * N + 1) / (24 * k * N)
+
+
+# --------------------------------------------------------------------------------------------
+# Beyond TIM 2014 (its §VI future work): leading-order heading errors of rotation-scheme
+# imperfections, for the demodulated estimate of carousel_theory.rotation_schemes about the vertical.
+# carousel_theory.imperfections computes the exact effects; tests compare the two.
+# --------------------------------------------------------------------------------------------
+
+#: Encoder offset β: the estimate is E rotated by β exactly, so the heading moves by −β (rad), any scheme.
+HEADING_ANGLE_BIAS = -beta
+#: White Gaussian encoder noise σ_e over n used samples: heading variance Var(sin e)/n (rad²), the exact
+#: cross-track variance over |E|² (the along-track part, Var(cos e)/n, does not move the heading).
+HEADING_ENCODER_NOISE_VARIANCE = (1 - sp.exp(-2 * sigma_e**2)) / (2 * n)
+#: Unmeasured angle random walk (σ_ν per sample) over n samples: the heading error is the walk's mean,
+#: whose variance is the RRW average variance of TIM 2014 eq. (15) with N = n (rad², leading order).
+HEADING_ANGLE_WALK_VARIANCE = sigma_nu**2 * (n + 1) * (2 * n + 1) / (6 * n)
+#: Unequal scale factors under static averaging or 2-position indexing (each component from one gyro):
+#: heading error (k_y − k_x) sin(2ψ)/2 (rad, leading order); zero for carouseling and 4-position indexing.
+HEADING_SCALE_MISMATCH = (k_y - k_x) * sp.sin(2 * psi) / 2
+#: A gyro tilted by ε toward the rotation axis, a once-per-turn rate wobble of relative size a at rate
+#: ω_r, demodulated at the nominal angle: the rate error |δ| = sin ε · a ω_r / 2 (rad/s); the heading
+#: error is at most |δ|/(Ω cos L).
+RATE_ERROR_MISALIGNMENT_WOBBLE = sp.sin(epsilon) * wobble * omega_r / 2

@@ -58,7 +58,21 @@ PARAMETER_HELP = {
     "var_x": "white-noise variance of the x gyro, >= 0",
     "var_y": "white-noise variance of the y gyro, >= 0",
     "d": "degree of fractional integration, 0 < d < 1",
+    "g": "indexing: transition samples after each dwell, dropped from the estimate, an integer >= 0",
+    "n": "samples used by the estimate, an integer >= 1",
+    "beta": "encoder offset, rad",
+    "sigma_e": "encoder white noise per sample, rad, >= 0",
+    "sigma_nu": "angle random walk per sample (unmeasured angle), rad, >= 0",
+    "k_x": "scale-factor error of the x gyro (relative)",
+    "k_y": "scale-factor error of the y gyro (relative)",
+    "psi": "true heading, rad",
+    "epsilon": "tilt of a gyro's sensing axis toward the rotation axis, rad",
+    "wobble": "relative amplitude of a once-per-turn rotation-rate wobble, >= 0",
+    "omega_r": "rotation rate, rad/s, > 0",
 }
+#: Rules of the rotation-scheme imperfection parameters (beyond TIM 2014).
+_REAL_PARAMETERS = ("beta", "k_x", "k_y", "psi", "epsilon")
+_NONNEGATIVE_PARAMETERS = ("sigma_e", "sigma_nu", "wobble")
 
 
 def _check_scalar(name: str, value: Any, minimum_samples: int) -> Any:
@@ -66,6 +80,16 @@ def _check_scalar(name: str, value: Any, minimum_samples: int) -> Any:
         return check_positive_integer("N", value, minimum=minimum_samples)
     if name in _BIN_PARAMETERS:
         return check_positive_integer(name, value)
+    if name == "g":
+        return check_positive_integer("g", value, minimum=0)
+    if name == "n":
+        return check_positive_integer("n", value)
+    if name in _REAL_PARAMETERS:
+        return check_real(name, value)
+    if name in _NONNEGATIVE_PARAMETERS:
+        return check_positive_real(name, value, allow_zero=True)
+    if name == "omega_r":
+        return check_positive_real("omega_r", value)
     if name == "rho":
         return check_correlation("rho", value)
     if name in ("var_x", "var_y"):
@@ -104,14 +128,14 @@ def _to_sympy_any(name: str, value: Any) -> sp.Expr:
 def _check_array(name: str, value: Any, minimum_samples: int) -> np.ndarray:
     """Array form of :func:`_check_scalar` for ``numeric``: integer dtypes for N and bins."""
     if np.ndim(value) == 0:
-        if name == "N" or name in _BIN_PARAMETERS:
+        if name == "N" or name in _BIN_PARAMETERS or name in ("g", "n"):
             return np.asarray(float(_check_scalar(name, value, minimum_samples)))
         return np.asarray(float(_check_scalar(name, value, minimum_samples)), dtype=np.float64)
     array = np.asarray(value)
-    if name == "N" or name in _BIN_PARAMETERS:
+    if name == "N" or name in _BIN_PARAMETERS or name in ("g", "n"):
         if array.dtype.kind not in "iu":
             raise TypeError(f"{name}={value!r}: must be an integer array (dtype {array.dtype} given)")
-        minimum = minimum_samples if name == "N" else 1
+        minimum = minimum_samples if name == "N" else 0 if name == "g" else 1
         if array.size and array.min() < minimum:
             bad = array.flat[int(np.argmin(array))].item()
             raise ValueError(f"{name}={bad!r}: must be an integer >= {minimum}")
@@ -396,6 +420,10 @@ _N1 = (
     "variance depends on the bin (see rrw_carousel_cov)"
 )
 
+_DEMODULATED = (
+    "two horizontal gyros turned about the vertical, demodulated mean of carousel_theory.rotation_schemes"
+)
+
 _ENTRIES = [
     Formula(
         "bias_carousel_residual",
@@ -529,6 +557,104 @@ _ENTRIES = [
         "TIM 2014 eq. (9), generalised to unequal variances, exact for every N",
         "Variance of the carouselled estimate: (var_x + var_y)/(2N) for N >= 3, var_y/2 at N = 2, "
         "var_y at N = 1.",
+    ),
+    # --- 2- and 4-position indexing (beyond TIM 2014; proofs/proof_indexing_variances.py) ----------
+    *(
+        Formula(
+            f"indexing{positions}_{process}_var",
+            parameters,
+            expression,
+            f"{positions}-position indexing of two horizontal gyros, k whole cycles of {positions} dwells of "
+            f"N samples{gap}; demodulated mean (carousel_theory.rotation_schemes); {assumption}",
+            "TIM 2014 §III propagation (eqs. (12)-(17)) extended to indexing, a case beyond the paper; "
+            "exact for every k >= 1, N >= 1",
+            f"Variance of each horizontal Earth-rate component (they are uncorrelated): {text}.",
+        )
+        for positions, process, parameters, expression, gap, assumption, text in (
+            (
+                2,
+                "bias",
+                ("N", "k"),
+                cf.INDEXING2_BIAS_VARIANCE,
+                "",
+                "unit random-constant biases (eq. (1))",
+                "0, the bias cancels in every cycle",
+            ),
+            (2, "white", ("N", "k"), cf.INDEXING2_WHITE_VARIANCE, "", "unit-variance white noise", "1/(2kN)"),
+            (
+                2,
+                "rrw",
+                ("N", "k", "g"),
+                cf.INDEXING2_RRW_VARIANCE,
+                ", each followed by g dropped transition samples",
+                _RRW,
+                "(2N² + 3gN + 1)/(12kN)",
+            ),
+            (
+                4,
+                "bias",
+                ("N", "k"),
+                cf.INDEXING4_BIAS_VARIANCE,
+                "",
+                "unit random-constant biases (eq. (1))",
+                "0, the bias cancels in every cycle",
+            ),
+            (4, "white", ("N", "k"), cf.INDEXING4_WHITE_VARIANCE, "", "unit-variance white noise", "1/(4kN)"),
+            (
+                4,
+                "rrw",
+                ("N", "k", "g"),
+                cf.INDEXING4_RRW_VARIANCE,
+                ", each followed by g dropped transition samples",
+                _RRW,
+                "(5N² + 6gN + 1)/(24kN)",
+            ),
+        )
+    ),
+    # --- imperfections of rotation schemes, leading order (beyond TIM 2014, its §VI future work) --------
+    Formula(
+        "heading_angle_bias",
+        ("beta",),
+        cf.HEADING_ANGLE_BIAS,
+        f"{_DEMODULATED}; the encoder reads φ + β",
+        "TIM 2014 §VI future work (imperfect angle knowledge), exact for any scheme",
+        "Heading error (rad) of an encoder offset β: the estimate is the Earth rate turned by β, so −β.",
+    ),
+    Formula(
+        "heading_angle_walk_var",
+        ("sigma_nu", "n"),
+        cf.HEADING_ANGLE_WALK_VARIANCE,
+        f"{_DEMODULATED} at the nominal angle; the true angle random-walks by σ_ν per sample",
+        "TIM 2014 §VI future work (variable slewing rate), leading order in σ_ν; eq. (15) with N = n",
+        "Heading variance (rad²) of an unmeasured angle random walk: the variance of its n-sample mean.",
+    ),
+    Formula(
+        "heading_encoder_noise_var",
+        ("sigma_e", "n"),
+        cf.HEADING_ENCODER_NOISE_VARIANCE,
+        f"{_DEMODULATED} at encoder angles with independent Gaussian errors of standard deviation σ_e",
+        "TIM 2014 §VI future work (imperfect angle knowledge), exact cross-track variance over |E|²",
+        "Heading variance (rad², linearised in the estimate) of encoder noise over n used samples: "
+        "(1 − exp(−2σ_e²))/(2n) ≈ σ_e²/n.",
+    ),
+    Formula(
+        "heading_scale_mismatch",
+        ("k_x", "k_y", "psi"),
+        cf.HEADING_SCALE_MISMATCH,
+        f"{_DEMODULATED}; static averaging or 2-position indexing; scale factors 1 + k_x, 1 + k_y",
+        "TIM 2014 §VI future work (scale factor errors), leading order in k_x, k_y",
+        "Heading error (rad) of unequal scale factors at true heading ψ: (k_y − k_x) sin(2ψ)/2; zero for "
+        "carouseling and 4-position indexing.",
+    ),
+    Formula(
+        "rate_error_misalignment_wobble",
+        ("epsilon", "wobble", "omega_r"),
+        cf.RATE_ERROR_MISALIGNMENT_WOBBLE,
+        f"{_DEMODULATED} at the nominal angle; one gyro tilted by ε toward the rotation axis; rate "
+        "ω_r(1 + a cos(φ + ϕ)) with a = wobble",
+        "TIM 2014 §VI future work (variable slewing rate), leading order in the wobble",
+        "Size (rad/s) of the Earth-rate error that the rotation rate leaks through a tilted gyro: "
+        "sin(ε) a ω_r/2, for every phase ϕ; the heading error is at most this over Ω cos L.",
     ),
 ]
 

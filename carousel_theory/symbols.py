@@ -14,18 +14,28 @@ __all__ = [
     "a",
     "alpha",
     "b",
+    "beta",
     "cluster_size",
     "d",
+    "epsilon",
+    "g",
     "h",
     "i",
     "j",
     "k",
+    "k_x",
+    "k_y",
     "m",
+    "n",
+    "omega_r",
     "p",
+    "psi",
     "quantization_step",
     "rho",
     "rrw_increment_variance",
     "sample_interval",
+    "sigma_e",
+    "sigma_nu",
     "sigma_q",
     "sigma_w",
     "theta",
@@ -33,6 +43,7 @@ __all__ = [
     "var_x",
     "var_y",
     "white_sample_variance",
+    "wobble",
     "x",
     "y",
 ]
@@ -77,3 +88,19 @@ white_sample_variance = sp.Symbol("sigma_WN^2", positive=True)
 rrw_increment_variance = sp.Symbol("sigma_q^2", positive=True)
 quantization_step = sp.Symbol("Q", positive=True)
 sample_interval = sp.Symbol("Delta_t", positive=True)
+#: Indexing (maytagging): samples spent turning between two dwell positions, dropped from the estimate.
+g = sp.Symbol("g", integer=True, nonnegative=True)
+#: Imperfections of a rotation scheme (carousel_theory.imperfections): encoder offset β (rad), encoder
+#: noise σ_e (rad per sample), angle random walk σ_ν (rad per sample), n samples used, scale-factor
+#: errors k_x, k_y, true heading ψ (rad), tilt ε of a gyro toward the rotation axis (rad), relative
+#: once-per-turn rate wobble a ("wobble") and the rotation rate ω_r (rad/s).
+beta = sp.Symbol("beta", real=True)
+sigma_e = sp.Symbol("sigma_e", nonnegative=True)
+sigma_nu = sp.Symbol("sigma_nu", nonnegative=True)
+n = sp.Symbol("n", integer=True, positive=True)
+k_x = sp.Symbol("k_x", real=True)
+k_y = sp.Symbol("k_y", real=True)
+psi = sp.Symbol("psi", real=True)
+epsilon = sp.Symbol("epsilon", real=True)
+wobble = sp.Symbol("wobble", nonnegative=True)
+omega_r = sp.Symbol("omega_r", positive=True)

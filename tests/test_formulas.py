@@ -41,6 +41,21 @@ SAMPLE = {
     "bias_carousel_residual_sin": {"N": 7},
     "flicker_average_var": {"d": Fraction(1, 2), "N": 4, "k": 3},
     "flicker_carousel_var": {"d": Fraction(1, 2), "N": 4, "k": 3},
+    "heading_angle_bias": {"beta": Fraction(1, 100)},
+    "heading_angle_walk_var": {"sigma_nu": Fraction(1, 1000), "n": 7},
+    "heading_encoder_noise_var": {"sigma_e": Fraction(1, 10), "n": 5},
+    "heading_scale_mismatch": {"k_x": Fraction(1, 1000), "k_y": Fraction(-1, 2000), "psi": Fraction(1, 3)},
+    "indexing2_bias_var": {"N": 5, "k": 2},
+    "indexing2_rrw_var": {"N": 5, "k": 2, "g": 3},
+    "indexing2_white_var": {"N": 5, "k": 2},
+    "indexing4_bias_var": {"N": 5, "k": 2},
+    "indexing4_rrw_var": {"N": 5, "k": 2, "g": 3},
+    "indexing4_white_var": {"N": 5, "k": 2},
+    "rate_error_misalignment_wobble": {
+        "epsilon": Fraction(1, 1000),
+        "wobble": Fraction(1, 100),
+        "omega_r": 3,
+    },
     "rrw_average_cov": {"N": 5, "a": 2, "b": 4},
     "rrw_average_var": {"N": 5, "k": 3},
     "rrw_carousel_cov": {"N": 5, "a": 3, "b": 3},
@@ -239,6 +254,10 @@ def _calls():
                 ("var_y", float("inf"), ValueError, "var_y=inf"),
                 ("d", Fraction(3, 2), ValueError, "d="),
                 ("d", 0, ValueError, "d=0"),
+                ("n", 0, ValueError, "n=0"),
+                ("sigma_e", -1, ValueError, "sigma_e=-1"),
+                ("omega_r", 0, ValueError, "omega_r=0"),
+                ("psi", float("nan"), ValueError, "psi=nan"),
             ]:
                 if parameter in values:
                     bad_values = {**values, parameter: bad}
@@ -262,6 +281,8 @@ def _calls():
         cases.append(
             (f"{name}-digits=0", lambda e=entry, v=values: e.evaluate(digits=0, **v), ValueError, "digits")
         )
+        if "N" not in values:
+            continue
         cases.append(
             (
                 f"{name}-numeric-float-N-array",
