@@ -12,11 +12,10 @@ from conftest import Z_MONTE_CARLO
 from carousel_theory.closed_loop import (
     BAND_EXPECTED_EXCEEDANCE,
     HEADLINE_METRIC,
-    AxisNoise,
-    _short_noise_allan,
     run_loop,
     uniform_resample,
 )
+from carousel_theory.closed_loop.residual_model import AxisNoise, short_noise_allan
 from carousel_theory.data import recording_from_arrays
 from carousel_theory.effects import CATALOGUE
 from carousel_theory.simulate import simulate_recording
@@ -43,15 +42,15 @@ def test_clean_recording_gives_none():
     assert result.error_after == result.error_before
     assert result.metric == HEADLINE_METRIC
     assert result.error_before < 2.0  # about 1 when the model is right
-    assert all(not step["tried"] for step in result.steps)
+    assert all(not step.trials for step in result.steps)
     json.dumps(result.as_dict())
 
 
 @pytest.mark.parametrize(
     ("injection", "name"),
     [
-        pytest.param("warmup:amplitude=5e-3,time_constant=30", "warmup", id="warmup"),
-        pytest.param("temperature", "temperature", id="temperature"),
+        pytest.param("warmup:amplitude=8e-3,time_constant=30", "warmup", id="warmup"),
+        pytest.param("temperature:coefficient=3e-3", "temperature", id="temperature"),
         pytest.param("spikes", "spikes", id="spikes"),
         pytest.param("sinusoid:amplitude=5e-4,frequency=3.3", "sinusoid", id="sinusoid"),
         pytest.param("colored_noise:coefficient=0.4", "colored_noise", id="colored_noise"),
@@ -71,9 +70,9 @@ def test_each_catalogue_effect_is_named_and_the_error_drops(injection, name):
 def test_outside_the_catalogue_is_unexplained_never_a_wrong_name():
     result = run_loop(_recording(["sawtooth:amplitude=3e-3,period=20"]))
     assert result.effects == ["unexplained"], result.steps
-    tried = [t["effect"] for step in result.steps for t in step["tried"]]
+    tried = [trial for step in result.steps for trial in step.trials]
     assert tried  # candidates were tried and every one was rejected with its reason
-    assert all(t["decision"].startswith("rejected") for step in result.steps for t in step["tried"])
+    assert all(trial.decision.startswith("rejected") and not trial.accepted for trial in tried)
 
 
 def test_fine_quantization_is_an_observation_not_an_effect():
@@ -114,7 +113,7 @@ def test_short_noise_allan_variance_against_the_definition():
         lags = np.abs(np.subtract.outer(np.arange(2 * m), np.arange(2 * m)))
         covariance = gamma[lags]
         expected = 0.5 * weights @ covariance @ weights
-        assert _short_noise_allan(noise, np.array([m]))[0] == pytest.approx(expected, rel=1e-12)
+        assert short_noise_allan(noise, np.array([m]))[0] == pytest.approx(expected, rel=1e-12)
     # AR(1) autocovariance: σ² φ^h / (1 − φ²)
     assert gamma[:4] == pytest.approx(2.0 * 0.5 ** np.arange(4) / 0.75, rel=1e-12)
 
@@ -152,7 +151,7 @@ def test_irregular_timestamps_are_resampled_and_said():
 
 def test_catalogue_effects_each_have_a_detector_in_the_loop():
     result = run_loop(_recording())
-    names = {d["effect"] for d in result.steps[0]["detections"]}
+    names = {d.effect for d in result.steps[0].detections}
     assert names == set(CATALOGUE) - {"none", "quantization"}
 
 
