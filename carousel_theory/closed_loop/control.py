@@ -138,7 +138,7 @@ def _iterate(
 
 def _run_iterations(loop: LoopInput, first: Evaluation) -> _Outcome:
     steps: list[Step] = []
-    current, effects, kept = first, [], set()
+    current, effects, kept = first, list[str](), set[str]()
     for iteration in range(1, loop.maximum_iterations + 1):
         step, candidate = _iterate(loop, current, iteration, kept)
         steps.append(step)
@@ -158,7 +158,7 @@ def _final_steps(loop: LoopInput, outcome: _Outcome) -> list[Step]:
     current, number = outcome.current, len(outcome.steps) + 1
     rate = final_alpha(loop.alpha)
     view = current.view
-    test = misfit_test(view.cleaned, view.fits, view.spec.terms, rate)
+    test = misfit_test(view.cleaned, view.fits, rate)
     if test.rejects:
         decision = (
             f"unexplained: the Allan variance of {test.axis} still misfits the model "

@@ -146,7 +146,8 @@ def _competing_terms(view: ResidualView, axis: str, signal: np.ndarray, terms: M
     joint = fit_residual_model(values, rate, terms, edf_hint=edf)
     dof = max(joint.dof, 1)
     statistic = max(0.0, without.chi_square - joint.chi_square) / max(1.0, joint.chi_square / dof)
-    return terms if float(stats.f.sf(statistic, 1, dof)) < COMPETING_TERM_LEVEL else ModelTerms(terms.ar_order)
+    needed = float(stats.f.sf(statistic, 1, dof)) < COMPETING_TERM_LEVEL
+    return terms if needed else ModelTerms(terms.ar_order)
 
 
 def ranking_noise(view: ResidualView, axis: str) -> AxisNoise:

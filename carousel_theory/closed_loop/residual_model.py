@@ -38,12 +38,14 @@ __all__ = [
     "ResidualFit",
     "allan_z_values",
     "bounded_noise",
+    "chi_square_z",
     "describe_noise",
     "difference_covariance_bands",
     "fit_residual_model",
     "noise_growth",
     "revolution_bin_variance",
     "short_noise_allan",
+    "simulate_block_sums",
     "simulate_noise",
     "spectral_density",
     "statistic_variance",
@@ -301,11 +303,16 @@ def fit_residual_model(
 
 
 def allan_z_values(fit: ResidualFit) -> np.ndarray:
-    """z-value of each Allan-variance estimate: ν σ̂²/σ² ~ χ²_ν under the model, mapped through its cdf
-    (a standardisation; the loop's misfit test takes its null distribution from a parametric bootstrap)."""
-    statistic = fit.edf * fit.observed / np.maximum(fit.model, 1e-300)
-    lower = stats.chi2.logcdf(statistic, fit.edf)
-    upper = stats.chi2.logsf(statistic, fit.edf)
+    """z-value of each Allan-variance estimate of ``fit`` (:func:`chi_square_z`)."""
+    return chi_square_z(fit.observed, fit.model, fit.edf)
+
+
+def chi_square_z(observed: np.ndarray, expected: np.ndarray, edf: np.ndarray) -> np.ndarray:
+    """z-value of Allan-variance estimates: ν σ̂²/σ² ~ χ²_ν under the model, mapped through its cdf (a
+    standardisation; at long τ the loop's misfit test takes its null distribution from a bootstrap)."""
+    statistic = edf * observed / np.maximum(expected, 1e-300)
+    lower = stats.chi2.logcdf(statistic, edf)
+    upper = stats.chi2.logsf(statistic, edf)
     z = np.where(lower < upper, stats.norm.ppf(np.exp(lower)), -stats.norm.ppf(np.exp(upper)))
     # exp(log p) underflows past z ≈ 38; beyond that the exact size no longer matters.
     z = np.where(np.isfinite(z), z, np.where(lower < upper, -38.0, 38.0))
@@ -457,6 +464,33 @@ def simulate_noise(noise: AxisNoise, length: int, rng: np.random.Generator) -> n
     total = short + walk
     if noise.flicker_variance:
         total += sample_flicker(length, rng=rng, d=noise.flicker_d, variance=noise.flicker_variance)
+    return total
+
+
+def simulate_block_sums(noise: AxisNoise, length: int, block: int, rng: np.random.Generator) -> np.ndarray:
+    """Sums of ``block`` consecutive samples of one draw of the fitted model (bias 0), ``length // block``
+    of them, without simulating every sample for the white and random-walk parts.
+
+    Short noise: independent N(0, σ_LR² b) (exact for white; for the autoregressive noise the block sums
+    are correlated only through O(correlation length / b) edge terms). Rate random walk (TIM 2014 eq. (2)):
+    block j's sum is b R_j + W_j with R_j the walk before the block, and the pair (I_j = Σ_k q_k,
+    W_j = Σ_k (b − k + 1) q_k) of the block's increments Gaussian with Var I = b σ_q²,
+    Var W = σ_q² b(b+1)(2b+1)/6, Cov = σ_q² b(b+1)/2 — exact. 1/f noise is simulated sample by sample."""
+    count = length // block
+    total = rng.normal(0.0, math.sqrt(noise.long_run_variance * block), count)
+    if noise.rrw_variance:
+        covariance = noise.rrw_variance * np.array(
+            [
+                [block, block * (block + 1) / 2],
+                [block * (block + 1) / 2, block * (block + 1) * (2 * block + 1) / 6],
+            ]
+        )
+        pairs = rng.multivariate_normal(np.zeros(2), covariance, count, method="cholesky")
+        before = np.concatenate(([0.0], np.cumsum(pairs[:-1, 0])))
+        total += block * before + pairs[:, 1]
+    if noise.flicker_variance:
+        flicker = sample_flicker(count * block, rng=rng, d=noise.flicker_d, variance=noise.flicker_variance)
+        total += flicker.reshape(count, block).sum(axis=1)
     return total
 
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -140,11 +141,11 @@ class TemperatureDetector:
         results = []
         for axis in view.axes:
             result = regressor_test(view, axis, view.temperature, refit_terms=view.spec.terms)
-            details = {"coefficient_rad_s_per_degC": result.amplitude, "degrees_of_freedom": result.dof}
+            found = {"coefficient_rad_s_per_degC": result.amplitude, "degrees_of_freedom": result.dof}
             log10_p = log10_two_sided_t(result.z, tests, result.dof)
-            results.append(_AxisResult(axis, result.z, log10_p, result.dof, details))
+            results.append(_AxisResult(axis, result.z, log10_p, result.dof, found))
         best, axes = _best(results, alpha)
-        details = {
+        details: dict[str, Any] = {
             "axis": best.axis,
             **best.details,
             "temperature_range_degC": float(np.ptp(view.temperature)),
