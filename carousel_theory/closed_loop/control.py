@@ -17,8 +17,9 @@ One iteration k
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -29,7 +30,7 @@ from carousel_theory.closed_loop.evaluation import HEADLINE_METRIC, Evaluation, 
 from carousel_theory.closed_loop.preparation import LoopInput, prepare
 from carousel_theory.closed_loop.residual_model import ModelTerms, describe_noise, noise_growth
 from carousel_theory.closed_loop.result import LoopResult, Step, Trial
-from carousel_theory.closed_loop.view import ModelSpec, build_view
+from carousel_theory.closed_loop.view import FittedEffect, ModelSpec, build_view
 from carousel_theory.data import Recording
 
 __all__ = ["MAXIMUM_TRIALS", "run_loop"]
@@ -57,7 +58,7 @@ def _evaluate(loop: LoopInput, spec: ModelSpec, iteration: int) -> Evaluation:
     return evaluate(view, loop.samples_per_revolution, loop.angle, rate)
 
 
-def _significant(current: Evaluation, kept: set[str]) -> list[Detection]:
+def _significant(current: Evaluation, kept: set[str] | frozenset[str]) -> list[Detection]:
     candidates = [d for name, d in current.detections.items() if name not in kept]
     if current.view.spec.terms.ar_order:
         candidates = [d for d in candidates if d.effect != "colored_noise"]
@@ -86,24 +87,82 @@ def _verdict(
     return False, "rejected: its own evidence remains (it does not explain the residual)"
 
 
+def _noise_grown(loop: LoopInput, current: Evaluation, candidate: Evaluation) -> list[str]:
+    grown = []
+    new_flicker = candidate.view.spec.terms.flicker and not current.view.spec.terms.flicker
+    for axis in loop.axes:
+        before, after = current.view.fits[axis].noise, candidate.view.fits[axis].noise
+        grown += [f"{axis} {change}" for change in noise_growth(before, after, new_flicker=new_flicker)]
+    return grown
+
+
+def _joint_term(current: Evaluation, fitted: FittedEffect, rate: float) -> Detection | None:
+    """The 1/f term a deterministic effect was detected jointly with, as a named effect when its own
+    test (on the residual without the effect) is significant at ``rate``."""
+    if fitted.terms is None or not fitted.terms.flicker or current.view.spec.terms.flicker:
+        return None
+    flicker = current.detections.get("flicker")
+    detection = current.detections[fitted.effect]
+    p_value = float(detection.details.get("competing_flicker_p", 1.0))
+    if flicker is None or not p_value < rate:
+        return None
+    return replace(flicker, log10_p=math.log10(max(p_value, 1e-300)), significant=True)
+
+
+def _explains(name: str, evaluation: Evaluation, rate: float) -> bool:
+    return not VERIFIERS[name].detect(evaluation.view, rate).log10_p < math.log10(rate)
+
+
+def _companion(
+    loop: LoopInput, current: Evaluation, candidate: Evaluation, detection: Detection, trial: _Trying
+) -> tuple[Detection, Evaluation] | None:
+    """Effects that mask each other, tested jointly: when removing ``detection``'s effect explains its
+    evidence but reveals another effect (significant only now, at the next iteration's rate) and so does
+    not lower the error by itself, the two are added together and kept if together they lower the
+    error and each explains its own evidence."""
+    revealed = _significant(candidate, trial.kept | {detection.effect})
+    if not revealed:
+        return None
+    companion = revealed[0]
+    fitted = REMEDIES[companion.effect].fit(candidate.view, companion, trial.rate)
+    joint = _evaluate(loop, candidate.view.spec.with_effect(fitted), trial.iteration + 1)
+    together = all(_explains(name, joint, trial.rate) for name in (detection.effect, companion.effect))
+    return (companion, joint) if together and joint.headline < current.headline else None
+
+
+@dataclass(frozen=True)
+class _Trying:
+    iteration: int
+    rate: float
+    kept: frozenset[str]
+
+
 def _try(
-    loop: LoopInput, current: Evaluation, detection: Detection, iteration: int
+    loop: LoopInput, current: Evaluation, detection: Detection, trying: _Trying
 ) -> tuple[Trial, Evaluation]:
     """Add ``detection``'s effect to the current model, evaluate, and judge it."""
-    rate = detector_alpha(loop.alpha, iteration, len(current.detections))
     remedy = REMEDIES[detection.effect]
-    fitted = remedy.fit(current.view, detection, rate)
-    candidate = _evaluate(loop, current.view.spec.with_effect(fitted), iteration + 1)
-    verification = VERIFIERS[detection.effect].detect(candidate.view, rate)
-    grown = []
-    if not remedy.stochastic:
-        for axis in loop.axes:
-            before, after = current.view.fits[axis].noise, candidate.view.fits[axis].noise
-            grown += [f"{axis} {change}" for change in noise_growth(before, after)]
+    fitted = remedy.fit(current.view, detection, trying.rate)
+    candidate = _evaluate(loop, current.view.spec.with_effect(fitted), trying.iteration + 1)
+    verification = VERIFIERS[detection.effect].detect(candidate.view, trying.rate)
+    grown = [] if remedy.stochastic else _noise_grown(loop, current, candidate)
     improved = candidate.headline < current.headline
-    accepted, decision = _verdict(detection, verification, improved, grown, rate)
+    accepted, decision = _verdict(detection, verification, improved, grown, trying.rate)
+    companion = _joint_term(current, fitted, trying.rate) if accepted else None
+    if not accepted and not improved and not grown and _explains(detection.effect, candidate, trying.rate):
+        joint = _companion(loop, current, candidate, detection, trying)
+        if joint is not None:
+            companion, candidate = joint
+            accepted, decision = True, f"added with {companion.effect}: together they explain their evidence"
     trial = Trial(
-        detection, current.headline, candidate.headline, verification, accepted, decision, fitted.parameters
+        detection,
+        current.headline,
+        candidate.headline,
+        verification,
+        accepted,
+        decision,
+        fitted.parameters,
+        companion,
     )
     return trial, candidate
 
@@ -118,14 +177,15 @@ def _iterate(
     if not significant:
         return Step(iteration, current.headline, "nothing significant remains", rate, detections), None
     trials = []
+    trying = _Trying(iteration, rate, frozenset(kept))
     for detection in significant[:MAXIMUM_TRIALS]:
-        trial, candidate = _try(loop, current, detection, iteration)
+        trial, candidate = _try(loop, current, detection, trying)
         trials.append(trial)
         if trial.accepted:
             step = Step(
                 iteration,
                 current.headline,
-                f"added {detection.effect}",
+                f"added {detection.effect}" + (f" and {trial.companion.effect}" if trial.companion else ""),
                 rate,
                 detections,
                 tuple(trials),
@@ -145,8 +205,10 @@ def _run_iterations(loop: LoopInput, first: Evaluation) -> _Outcome:
         if step.added is None:
             return _Outcome(steps, current, effects, step.decision.startswith("unexplained"))
         assert candidate is not None
-        effects.append(step.added.effect)
-        kept.add(step.added.effect)
+        for added in (step.added, step.trials[-1].companion):
+            if added is not None:
+                effects.append(added.effect)
+                kept.add(added.effect)
         current = candidate
     # The iteration budget ran out: whatever is still significant is unexplained.
     return _Outcome(steps, current, effects, bool(_significant(current, kept)))

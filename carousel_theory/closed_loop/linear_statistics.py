@@ -136,25 +136,28 @@ def nested_chi_square(view: ResidualView, axis: str, *, flicker: bool) -> tuple[
 COMPETING_TERM_LEVEL = 0.05
 
 
-def _competing_terms(view: ResidualView, axis: str, signal: np.ndarray, terms: ModelTerms) -> ModelTerms:
+def _competing_terms(
+    view: ResidualView, axis: str, signal: np.ndarray, terms: ModelTerms
+) -> tuple[ModelTerms, float]:
     """``terms``, keeping a 1/f term only when the model already has one or when, on the residual without
-    ``signal``, the F test of the nested Allan-variance fits asks for it at COMPETING_TERM_LEVEL."""
+    ``signal``, the F test of the nested Allan-variance fits asks for it at COMPETING_TERM_LEVEL; and the
+    p-value of that F test (1 when none was made)."""
     if not terms.flicker or view.spec.terms.flicker:
-        return terms
+        return terms, 1.0
     values, rate, edf = view.cleaned[axis] - signal, view.sample_rate, view.fits[axis].edf
     without = fit_residual_model(values, rate, ModelTerms(terms.ar_order, False), edf_hint=edf)
     joint = fit_residual_model(values, rate, terms, edf_hint=edf)
     dof = max(joint.dof, 1)
     statistic = max(0.0, without.chi_square - joint.chi_square) / max(1.0, joint.chi_square / dof)
-    needed = float(stats.f.sf(statistic, 1, dof)) < COMPETING_TERM_LEVEL
-    return terms if needed else ModelTerms(terms.ar_order)
+    p_value = float(stats.f.sf(statistic, 1, dof))
+    return (terms if p_value < COMPETING_TERM_LEVEL else ModelTerms(terms.ar_order)), p_value
 
 
 def ranking_noise(view: ResidualView, axis: str) -> AxisNoise:
     """The noise model under which the points of a scan are ranked: the view's, or, when a 1/f term the
     model lacks is asked for by the residual itself (:func:`_competing_terms`), the fit with it."""
     terms = ModelTerms(view.spec.terms.ar_order, flicker=True)
-    chosen = _competing_terms(view, axis, np.zeros(len(view.time)), terms)
+    chosen, _ = _competing_terms(view, axis, np.zeros(len(view.time)), terms)
     if chosen.flicker and not view.spec.terms.flicker:
         return refit(view, axis, np.zeros(len(view.time)), chosen)
     return view.fits[axis].noise
@@ -162,12 +165,14 @@ def ranking_noise(view: ResidualView, axis: str) -> AxisNoise:
 
 @dataclass(frozen=True)
 class RegressorTest:
-    """z of a regressor's GLS amplitude in the residual, the amplitude, and the degrees of freedom of
-    the Student t that z is referred to."""
+    """z of a regressor's GLS amplitude in the residual, the amplitude, the degrees of freedom of the
+    Student t that z is referred to, and the p-value of a competing 1/f term on the residual without the
+    regressor (1 when none was tested)."""
 
     z: float
     amplitude: float
     dof: float
+    competing_p: float = 1.0
 
 
 def regressor_test(
@@ -201,12 +206,13 @@ def regressor_test(
         return RegressorTest(
             float(np.dot(weights, view.residuals[axis])) / math.sqrt(variance), amplitude, math.inf
         )
+    competing_p = 1.0
     if refit_terms is not None:
         signal = amplitude * (regressor - regressor.mean())
-        terms = _competing_terms(view, axis, signal, refit_terms)
+        terms, competing_p = _competing_terms(view, axis, signal, refit_terms)
         refitted = refit(view, axis, signal, terms)
         noise = bounded_noise(noise, refitted, keep_flicker_floor=not terms.flicker)
         weights = gls_weights(view, axis, regressor, noise)
     variance, dof = statistic_variance_dof(noise, weights)
     projection = float(np.dot(weights, view.residuals[axis]))
-    return RegressorTest(projection / math.sqrt(max(variance, 1e-300)), amplitude, dof)
+    return RegressorTest(projection / math.sqrt(max(variance, 1e-300)), amplitude, dof, competing_p)

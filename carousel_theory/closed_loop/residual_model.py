@@ -436,8 +436,11 @@ def revolution_bin_variance(noise: AxisNoise, weights: np.ndarray, start: int) -
     return total
 
 
-def noise_growth(before: AxisNoise, after: AxisNoise, z: float = 2.0) -> list[str]:
-    """Noise variances that grew by more than ``z`` standard errors (and 20 %) from ``before``."""
+def noise_growth(
+    before: AxisNoise, after: AxisNoise, z: float = 2.0, *, new_flicker: bool = False
+) -> list[str]:
+    """Noise variances that grew by more than ``z`` standard errors (and 20 %) from ``before``
+    (``new_flicker``: the 1/f term is new in ``after``, its variance is not compared)."""
     grown = []
     pairs = (
         ("long_run_white_variance", before.long_run_variance, after.long_run_variance),
@@ -445,6 +448,8 @@ def noise_growth(before: AxisNoise, after: AxisNoise, z: float = 2.0) -> list[st
         ("flicker_variance", before.flicker_variance, after.flicker_variance),
     )
     for name, value_before, value_after in pairs:
+        if new_flicker and name == "flicker_variance":
+            continue
         error = before.standard_errors.get(name, math.nan)
         if not math.isfinite(error) or error <= 0:
             error = 0.1 * value_before

@@ -14,7 +14,8 @@ __all__ = ["LoopResult", "Step", "Trial"]
 
 @dataclass(frozen=True)
 class Trial:
-    """One candidate effect added to the model, what the error and its own evidence did, and the verdict."""
+    """One candidate effect added to the model, what the error and its own evidence did, and the verdict;
+    ``companion`` is the effect added with it when the two mask each other (tested jointly)."""
 
     detection: Detection
     error_before: float
@@ -23,6 +24,7 @@ class Trial:
     accepted: bool
     decision: str
     parameters: dict[str, Any]
+    companion: Detection | None = None
 
     def as_dict(self) -> dict[str, Any]:
         return {
@@ -37,6 +39,7 @@ class Trial:
             "verification_log10_p": self.verification.log10_p,
             "decision": self.decision,
             "parameters": self.parameters,
+            "added_with": None if self.companion is None else self.companion.effect,
         }
 
 

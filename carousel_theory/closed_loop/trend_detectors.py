@@ -25,6 +25,7 @@ from carousel_theory.closed_loop.detection import (
     untestable,
 )
 from carousel_theory.closed_loop.linear_statistics import (
+    COMPETING_TERM_LEVEL,
     gls_block,
     gls_difference_solve,
     gls_weights,
@@ -80,6 +81,7 @@ class WarmupDetector:
             "time_constant_s": ranked[1],
             "amplitude": result.amplitude,
             "degrees_of_freedom": result.dof,
+            "competing_flicker_p": result.competing_p,
         }
         return _AxisResult(
             axis, result.z, log10_two_sided_t(result.z, tests, result.dof), result.dof, details
@@ -120,7 +122,10 @@ class WarmupDetector:
             curve = amplitude * np.exp(-relative / time_constant)
             signals[axis] = curve - curve.mean()
             fitted[axis] = {"amplitude": amplitude, "time_constant_s": time_constant}
-        return FittedEffect(self.name, fitted, signals=signals)
+        # Detected jointly with a 1/f term: the two enter the model together.
+        joint = float(detection.details.get("competing_flicker_p", 1.0)) < COMPETING_TERM_LEVEL
+        terms = ModelTerms(flicker=True) if joint else None
+        return FittedEffect(self.name, fitted, signals=signals, terms=terms)
 
 
 class TemperatureDetector:
