@@ -22,6 +22,7 @@ from carousel_theory.closed_loop.residual_model import (
     bounded_noise,
     difference_covariance_bands,
     fit_residual_model,
+    ranking_statistic_variance,
     statistic_variance,
     statistic_variance_dof,
 )
@@ -202,7 +203,10 @@ def regressor_test(
     amplitude = float(np.dot(weights, view.residuals[axis])) / information
     noise = view.fits[axis].noise
     if quick:
-        variance = statistic_variance(ranking or noise, weights, include_flicker=ranking is not None)
+        if ranking is None:
+            variance = statistic_variance(noise, weights, include_flicker=False)
+        else:
+            variance = ranking_statistic_variance(ranking, weights, max(gls_block(view), 16))
         return RegressorTest(
             float(np.dot(weights, view.residuals[axis])) / math.sqrt(variance), amplitude, math.inf
         )
