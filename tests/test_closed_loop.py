@@ -288,3 +288,33 @@ def test_steps_are_typed():
     assert isinstance(first, Step) and isinstance(first.trials[0], Trial)
     assert first.added is not None and first.added.effect == "spikes"
     assert result.as_dict()["steps"][0]["tried"][0]["effect"] == "spikes"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("effects", "rrw_variance", "expected"),
+    [
+        pytest.param(
+            ["warmup:amplitude=4e-3,time_constant=120", "flicker:variance=5e-8"],
+            WALK,
+            {"warmup", "flicker"},
+            id="warmup-under-flicker",
+        ),
+        pytest.param(["temperature:coefficient=5e-3"], 1e-10, {"temperature"}, id="temperature-under-rrw"),
+    ],
+)
+def test_effects_that_mask_each_other_are_both_named_on_one_hour(effects, rrw_variance, expected):
+    """A warm-up under 1/f noise of similar low-frequency power, a temperature effect under a random
+    walk ten times the declared one: the weaker effect is still named (tested jointly with the
+    competing stochastic term); rates over seeds are in docs/loop_detection_rates.md."""
+    recording = simulate_recording(
+        360_000,
+        RATE,
+        rng=np.random.default_rng(40_000),
+        bias=0.01,
+        white_variance=WHITE,
+        rrw_variance=rrw_variance,
+        effects=effects,
+    )
+    result = run_loop(recording)
+    assert set(result.effects) == expected, result.steps
