@@ -19,6 +19,7 @@ from scipy.linalg import solveh_banded
 from carousel_theory.closed_loop.residual_model import (
     AxisNoise,
     ModelTerms,
+    ResidualFit,
     bounded_noise,
     difference_covariance_bands,
     fit_residual_model,
@@ -32,6 +33,7 @@ __all__ = [
     "GLS_BLOCKS",
     "RegressorTest",
     "StepScan",
+    "fit_with_terms",
     "gls_block",
     "gls_difference_solve",
     "gls_weights",
@@ -116,9 +118,19 @@ def refit(view: ResidualView, axis: str, signal: np.ndarray, terms: ModelTerms |
         view.cleaned[axis] - signal,
         view.sample_rate,
         view.spec.terms if terms is None else terms,
-        edf_hint=view.fits[axis].edf,
+        reference=view.fits[axis],
     )
     return fit.noise
+
+
+def fit_with_terms(view: ResidualView, axis: str, terms: ModelTerms) -> ResidualFit:
+    """The axis's residual fitted with ``terms`` and the view's weights (made once per view and terms)."""
+    key = (axis, terms)
+    if key not in view.other_fits:
+        view.other_fits[key] = fit_residual_model(
+            view.cleaned[axis], view.sample_rate, terms, reference=view.fits[axis]
+        )
+    return view.other_fits[key]
 
 
 def nested_chi_square(view: ResidualView, axis: str, *, flicker: bool) -> tuple[float, int]:
@@ -127,8 +139,7 @@ def nested_chi_square(view: ResidualView, axis: str, *, flicker: bool) -> tuple[
     if flicker == view.spec.terms.flicker:
         fit = view.fits[axis]
         return fit.chi_square, fit.dof
-    terms = ModelTerms(view.spec.terms.ar_order, flicker)
-    fit = fit_residual_model(view.cleaned[axis], view.sample_rate, terms, edf_hint=view.fits[axis].edf)
+    fit = fit_with_terms(view, axis, ModelTerms(view.spec.terms.ar_order, flicker))
     return fit.chi_square, fit.dof
 
 
@@ -145,9 +156,13 @@ def _competing_terms(
     p-value of that F test (1 when none was made)."""
     if not terms.flicker or view.spec.terms.flicker:
         return terms, 1.0
-    values, rate, edf = view.cleaned[axis] - signal, view.sample_rate, view.fits[axis].edf
-    without = fit_residual_model(values, rate, ModelTerms(terms.ar_order, False), edf_hint=edf)
-    joint = fit_residual_model(values, rate, terms, edf_hint=edf)
+    if not np.any(signal):
+        without = fit_with_terms(view, axis, ModelTerms(terms.ar_order, False))
+        joint = fit_with_terms(view, axis, terms)
+    else:
+        values, rate, reference = view.cleaned[axis] - signal, view.sample_rate, view.fits[axis]
+        without = fit_residual_model(values, rate, ModelTerms(terms.ar_order, False), reference=reference)
+        joint = fit_residual_model(values, rate, terms, reference=reference)
     dof = max(joint.dof, 1)
     statistic = max(0.0, without.chi_square - joint.chi_square) / max(1.0, joint.chi_square / dof)
     p_value = float(stats.f.sf(statistic, 1, dof))
@@ -160,7 +175,7 @@ def ranking_noise(view: ResidualView, axis: str) -> AxisNoise:
     terms = ModelTerms(view.spec.terms.ar_order, flicker=True)
     chosen, _ = _competing_terms(view, axis, np.zeros(len(view.time)), terms)
     if chosen.flicker and not view.spec.terms.flicker:
-        return refit(view, axis, np.zeros(len(view.time)), chosen)
+        return fit_with_terms(view, axis, chosen).noise
     return view.fits[axis].noise
 
 

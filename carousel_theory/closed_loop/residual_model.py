@@ -214,13 +214,16 @@ class _Design:
     ar: tuple[float, ...]
 
 
-def _design(x: np.ndarray, sample_rate: float, terms: ModelTerms, edf_hint: np.ndarray | None) -> _Design:
+def _design(x: np.ndarray, sample_rate: float, terms: ModelTerms, reference: ResidualFit | None) -> _Design:
     """Allan-variance points with at least MINIMUM_CLUSTERS clusters and the unit curve of each term.
 
     Beyond T/8 an estimate rests on 2–6 squared differences, and a single one would decide whether the
     fit "needs" a 1/f or a random-walk term."""
     n = len(x)
-    ar = yule_walker(x, sample_rate, terms.ar_order) if terms.ar_order else ()
+    ar: tuple[float, ...] = ()
+    if terms.ar_order:
+        reused = reference.noise.ar_coefficients if reference is not None else ()
+        ar = reused or yule_walker(x, sample_rate, terms.ar_order)
     allan = allan_variance(x, sample_rate, "octave", estimator="non-overlapping", noise="white")
     assert allan.samples_per_cluster is not None and allan.edf is not None
     keep = allan.samples_per_cluster * MINIMUM_CLUSTERS <= n
@@ -231,7 +234,7 @@ def _design(x: np.ndarray, sample_rate: float, terms: ModelTerms, edf_hint: np.n
     if terms.flicker:
         columns.append(_unit_flicker_allan(sizes, n))
         names = (*names, "flicker")
-    edf = allan.edf[keep].astype(np.float64) if edf_hint is None else np.asarray(edf_hint, dtype=float)
+    edf = allan.edf[keep].astype(np.float64) if reference is None else reference.edf
     return _Design(sizes, allan.tau[keep], allan.avar[keep], np.column_stack(columns), names, edf, ar)
 
 
@@ -264,23 +267,25 @@ def _standard_errors(design: _Design, sigma: np.ndarray) -> dict[str, float]:
 
 
 def fit_residual_model(
-    values: np.ndarray, sample_rate: float, terms: ModelTerms, *, edf_hint: np.ndarray | None = None
+    values: np.ndarray, sample_rate: float, terms: ModelTerms, *, reference: ResidualFit | None = None
 ) -> ResidualFit:
     """Fit bias + short noise + rate random walk (+ 1/f) to one axis.
 
     Weighted non-negative least squares on the Allan variance: Var(σ̂_A²) = 2 σ_A⁴/ν with ν the
-    equivalent degrees of freedom of the current fit, iterated; ``edf_hint`` fixes ν (a refit of the
-    same axis, or a nested fit that must share its weights with the fit it is compared to).
+    equivalent degrees of freedom of the current fit, iterated. ``reference``, a fit of the same axis,
+    fixes ν (a refit, or a nested fit that must share its weights with the fit it is compared to) and
+    lends its autoregressive coefficients (a refit subtracts a slow signal, which leaves the fast part's
+    autocovariance as it was).
     """
     x = np.asarray(values, dtype=np.float64)
-    design = _design(x, sample_rate, terms, edf_hint)
+    design = _design(x, sample_rate, terms, reference)
     edf, weights_base = design.edf, design.observed
     theta = np.zeros(len(design.names))
-    for iteration in range(3 if edf_hint is None else 2):
+    for iteration in range(3 if reference is None else 2):
         sigma = np.maximum(weights_base, 1e-300) * np.sqrt(2.0 / edf)
         theta, _ = optimize.nnls(design.matrix / sigma[:, None], design.observed / sigma)
         weights_base = np.maximum(design.matrix @ theta, 1e-300)
-        if edf_hint is None and iteration < 2:
+        if reference is None and iteration < 2:
             edf = _model_edf(design, theta, sample_rate, len(x))
     fitted = design.matrix @ theta
     sigma = np.maximum(fitted, 1e-300) * np.sqrt(2.0 / edf)
@@ -414,9 +419,12 @@ def spectral_density(noise: AxisNoise, frequencies: np.ndarray) -> np.ndarray:
     omega = 2.0 * np.pi * np.asarray(frequencies) / noise.sample_rate
     short = np.full_like(omega, noise.white_variance, dtype=np.float64)
     if noise.ar_coefficients:
-        j = np.arange(1, len(noise.ar_coefficients) + 1)
-        transfer = 1.0 - np.exp(-1j * np.outer(omega, j)) @ np.asarray(noise.ar_coefficients)
-        short = noise.white_variance / np.abs(transfer) ** 2
+        # 1 − Σ a_j z^j at z = e^{−iω}, by Horner's rule
+        z = np.exp(-1j * omega)
+        transfer = np.zeros_like(z)
+        for coefficient in reversed(noise.ar_coefficients):
+            transfer = (transfer + coefficient) * z
+        short = noise.white_variance / np.abs(1.0 - transfer) ** 2
     difference = np.maximum(4.0 * np.sin(omega / 2.0) ** 2, 1e-300)  # |1 − e^{−iω}|²
     total = short + noise.rrw_variance / difference  # TIM 2014 eq. (2): r = q / (1 − B)
     if noise.flicker_variance:

@@ -67,6 +67,10 @@ class ResidualView:
     cleaned: dict[str, np.ndarray]
     residuals: dict[str, np.ndarray]
     fits: dict[str, ResidualFit]
+    #: Fits of the same axes with other terms, made on demand (see linear_statistics.fit_with_terms).
+    other_fits: dict[tuple[str, ModelTerms], ResidualFit] = field(
+        default_factory=dict, compare=False, repr=False
+    )
 
 
 def local_median_replacement(x: np.ndarray, mask: np.ndarray, half_width: int = 7) -> np.ndarray:
