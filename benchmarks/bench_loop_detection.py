@@ -133,7 +133,8 @@ def run_clean(counts: dict[int, int]) -> dict[int, CleanTally]:
             tally.fired.update(_what_fired(result))
         tallies[duration] = tally
         print(
-            f"clean {duration} s: {tally.alarms}/{tally.runs}, mean loop time {tally.seconds / max(count, 1):.1f} s"
+            f"clean {duration} s: {tally.alarms}/{tally.runs}, "
+            f"mean loop time {tally.seconds / max(count, 1):.1f} s"
         )
     return tallies
 

@@ -81,13 +81,12 @@ class Warmup(Effect):
     kind = "additive"
     summary = "exponential turn-on transient of the bias, A e^{−t/τ}"
     detection = (
-        "max over 8 time constants (log-spaced, T/500 … T/4) of |z| of the projection of the residual on "
-        "the centred e^{−t/τ}; Bonferroni over the grid and the axes"
+        "max over 8 time constants (log-spaced, T/500 … T/4) of |z| of the GLS projection of the residual "
+        "on e^{−t/τ}, the noise refitted jointly with the transient and with a 1/f term when the residual "
+        "without the transient asks for one; Student t; Bonferroni over the grid and the axes"
     )
-    enters_model = "a deterministic term A e^{−t/τ} added to the bias of each axis"
-    removal = (
-        "nonlinear least squares for (A, τ) on 1-s bin means, started at the best grid point; subtracted"
-    )
+    enters_model = "a deterministic term A e^{−t/τ} added to the bias of each axis (with the 1/f term it was detected with)"
+    removal = "τ maximising the GLS fit on a fine grid around the detected one, A by GLS; subtracted"
     defaults: ClassVar[dict[str, float]] = {"amplitude": 2e-3, "time_constant": 120.0}
 
     def inject(self, signal, time, temperature, rng, parameters):
@@ -99,10 +98,11 @@ class Temperature(Effect):
     kind = "additive"
     summary = "bias linear in the temperature column, k (T − T̄)"
     detection = (
-        "|z| of the projection of the residual on the centred temperature column; Bonferroni over axes"
+        "|z| of the GLS projection of the residual on the temperature column, the noise (rate random walk "
+        "included) refitted jointly with the regressor; Student t; Bonferroni over axes"
     )
     enters_model = "a term k_axis (T_t − T̄) added to the bias of each axis (k in rad/s per °C)"
-    removal = "least squares for k on each axis; subtracted"
+    removal = "k by generalised least squares on each axis; subtracted"
     defaults: ClassVar[dict[str, float]] = {"coefficient": 1.5e-3}
 
     def inject(self, signal, time, temperature, rng, parameters):
