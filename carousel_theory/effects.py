@@ -85,7 +85,10 @@ class Warmup(Effect):
         "on e^{−t/τ}, the noise refitted jointly with the transient and with a 1/f term when the residual "
         "without the transient asks for one; Student t; Bonferroni over the grid and the axes"
     )
-    enters_model = "a deterministic term A e^{−t/τ} added to the bias of each axis (with the 1/f term it was detected with)"
+    enters_model = (
+        "a deterministic term A e^{−t/τ} added to the bias of each axis "
+        "(with the 1/f term it was detected with)"
+    )
     removal = "τ maximising the GLS fit on a fine grid around the detected one, A by GLS; subtracted"
     defaults: ClassVar[dict[str, float]] = {"amplitude": 2e-3, "time_constant": 120.0}
 
