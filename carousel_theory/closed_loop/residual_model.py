@@ -503,16 +503,13 @@ def simulate_block_sums(noise: AxisNoise, length: int, block: int, rng: np.rando
     are correlated only through O(correlation length / b) edge terms). Rate random walk (TIM 2014 eq. (2)):
     block j's sum is b R_j + W_j with R_j the walk before the block, and the pair (I_j = Σ_k q_k,
     W_j = Σ_k (b − k + 1) q_k) of the block's increments Gaussian with Var I = b σ_q²,
-    Var W = σ_q² b(b+1)(2b+1)/6, Cov = σ_q² b(b+1)/2 — exact. 1/f noise is simulated sample by sample."""
+    Var W = σ_q² Σ_k k², Cov = σ_q² Σ_k k — exact. 1/f noise is simulated sample by sample."""
     count = length // block
     total = rng.normal(0.0, math.sqrt(noise.long_run_variance * block), count)
     if noise.rrw_variance:
-        covariance = noise.rrw_variance * np.array(
-            [
-                [block, block * (block + 1) / 2],
-                [block * (block + 1) / 2, block * (block + 1) * (2 * block + 1) / 6],
-            ]
-        )
+        # Σ_k k and Σ_k k² over the block, exact integer sums (the weights of W are b, b − 1, …, 1)
+        linear, square = sum(range(1, block + 1)), sum(k * k for k in range(1, block + 1))
+        covariance = noise.rrw_variance * np.array([[block, linear], [linear, square]], dtype=np.float64)
         pairs = rng.multivariate_normal(np.zeros(2), covariance, count, method="cholesky")
         before = np.concatenate(([0.0], np.cumsum(pairs[:-1, 0])))
         total += block * before + pairs[:, 1]
