@@ -248,12 +248,11 @@ def _load(parts: Path, name: str) -> object:
 def run_section(section: str, args: argparse.Namespace) -> None:
     """Run one section and store its tallies as JSON in ``args.parts`` (so sections can run apart)."""
     if section == "clean":
-        tallies = run_clean(dict(zip(CLEAN_DURATIONS, args.clean, strict=True)))
-        _save(
-            args.parts,
-            "clean",
-            {str(k): [t.runs, t.alarms, dict(t.outcomes), dict(t.fired)] for k, t in tallies.items()},
-        )
+        counts = dict(zip(CLEAN_DURATIONS, args.clean, strict=True))
+        for duration in args.durations or CLEAN_DURATIONS:
+            tally = run_clean({duration: counts[duration]})[duration]
+            record = [tally.runs, tally.alarms, dict(tally.outcomes), dict(tally.fired)]
+            _save(args.parts, f"clean_{duration}", record)
     elif section == "pairs":
         rows = run_pairs(args.pair_seeds)
         _save(
@@ -275,11 +274,10 @@ def run_section(section: str, args: argparse.Namespace) -> None:
 
 
 def write_document(args: argparse.Namespace) -> None:
-    clean = _load(args.parts, "clean")
-    tallies = {
-        int(k): CleanTally(runs, alarms, Counter(outcomes), Counter(fired))
-        for k, (runs, alarms, outcomes, fired) in clean.items()  # type: ignore[union-attr]
-    }
+    tallies = {}
+    for duration in CLEAN_DURATIONS:
+        runs, alarms, outcomes, fired = _load(args.parts, f"clean_{duration}")  # type: ignore[misc]
+        tallies[duration] = CleanTally(runs, alarms, Counter(outcomes), Counter(fired))
     pairs = [(PAIRS[i], named, both, other) for i, named, both, other in _load(args.parts, "pairs")]  # type: ignore[union-attr]
     effects = _load(args.parts, "effects")
     used = {name: _load(args.parts, f"arguments_{name}") for name in ("clean", "pairs", "effects")}
@@ -323,6 +321,13 @@ def main() -> int:
         default=[40, 100, 40],
         metavar=("N300", "N3600", "N10000"),
         help="clean records of 300 s, 1 h and 10,000 s",
+    )
+    parser.add_argument(
+        "--durations",
+        type=int,
+        nargs="*",
+        choices=CLEAN_DURATIONS,
+        help="clean durations to run (default all)",
     )
     parser.add_argument("--seeds", type=int, default=10, help="records per single effect and amplitude")
     parser.add_argument("--pair-seeds", type=int, default=10, help="records per pair case (1 h each)")
