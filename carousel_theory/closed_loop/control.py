@@ -216,7 +216,8 @@ def _run_iterations(loop: LoopInput, first: Evaluation) -> _Outcome:
 
 def _final_steps(loop: LoopInput, outcome: _Outcome) -> list[Step]:
     """The final tests when the iterations ended explained: the Allan-variance misfit (parametric
-    bootstrap) and, for an effect kept for "most of its evidence", whether its evidence remains."""
+    bootstrap) and, for an effect kept for "most of its evidence", whether its evidence remains at the
+    rate of the iteration that added it."""
     current, number = outcome.current, len(outcome.steps) + 1
     rate = final_alpha(loop.alpha)
     view = current.view
@@ -229,13 +230,14 @@ def _final_steps(loop: LoopInput, outcome: _Outcome) -> list[Step]:
             f"{test.replicates} replicates, α = {rate:.3g})"
         )
         return [Step(number, current.headline, decision, rate)]
-    for name in outcome.effects:
-        if VERIFIERS[name].detect(view, rate).significant:
-            return [
-                Step(
-                    number, current.headline, f"unexplained: evidence of {name} remains after adding it", rate
-                )
-            ]
+    # An effect kept for "most of its evidence" is judged again, at the rate of its own iteration.
+    for step in outcome.steps:
+        partial = [t for t in step.trials if t.accepted and t.decision.endswith("most of its evidence")]
+        for trial in partial:
+            name = trial.detection.effect
+            if VERIFIERS[name].detect(view, step.detector_alpha).significant:
+                decision = f"unexplained: evidence of {name} remains after adding it"
+                return [Step(number, current.headline, decision, step.detector_alpha)]
     return []
 
 
