@@ -47,7 +47,6 @@ __all__ = [
     "revolution_bin_variance",
     "short_noise_allan",
     "simulate_block_sums",
-    "simulate_noise",
     "spectral_density",
     "statistic_variance",
     "statistic_variance_dof",
@@ -479,20 +478,6 @@ def noise_growth(
         if value_after > value_before + z * error and value_after > 1.2 * value_before:
             grown.append(f"{name} {value_before:.3g} -> {value_after:.3g}")
     return grown
-
-
-def simulate_noise(noise: AxisNoise, length: int, rng: np.random.Generator) -> np.ndarray:
-    """One draw of ``length`` samples of the fitted model (bias 0): the parametric bootstrap's null."""
-    from scipy.signal import lfilter
-
-    short = rng.normal(0.0, math.sqrt(noise.white_variance), length)
-    if noise.ar_coefficients:
-        short = lfilter([1.0], np.concatenate(([1.0], -np.asarray(noise.ar_coefficients))), short)
-    walk = np.cumsum(rng.normal(0.0, math.sqrt(noise.rrw_variance), length))  # TIM 2014 eq. (2)
-    total = short + walk
-    if noise.flicker_variance:
-        total += sample_flicker(length, rng=rng, d=noise.flicker_d, variance=noise.flicker_variance)
-    return total
 
 
 def simulate_block_sums(noise: AxisNoise, length: int, block: int, rng: np.random.Generator) -> np.ndarray:
