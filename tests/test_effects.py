@@ -1,4 +1,6 @@
-"""The effect catalogue: stable names, calibrated null distributions, each detector finds its own effect."""
+"""The effect catalogue and the loop's detectors: stable names, calibrated null distributions, each
+detector finds its own effect — through the public contract (``DETECTORS[name].detect(view, alpha)`` on a
+view made by ``build_view``)."""
 
 from __future__ import annotations
 
@@ -9,18 +11,15 @@ import pytest
 from conftest import Z_MONTE_CARLO
 from scipy import stats
 
-from carousel_theory.closed_loop import _FlickerBasis, _ModelSpec, _View
-from carousel_theory.effects import (
-    CATALOGUE,
-    TESTED_EFFECTS,
-    check_effect_parameters,
-    detect_quantization,
-    hann_periodogram,
-)
+from carousel_theory.closed_loop.detectors import DETECTORS, REMEDIES, TESTED_EFFECTS
+from carousel_theory.closed_loop.signal_detectors import hann_periodogram, robust_z
+from carousel_theory.closed_loop.view import ModelSpec, build_view
+from carousel_theory.effects import CATALOGUE, check_effect_parameters, detect_quantization
 from carousel_theory.simulate import simulate_recording
 
 REQUIRED = {"flicker", "warmup", "temperature", "spikes", "sinusoid", "colored_noise", "none"}
 WHITE, WALK = 3.6e-5, 1e-11
+ALPHA = 0.01
 
 
 def _view(effects=(), samples=30_000, seed=1):
@@ -33,7 +32,7 @@ def _view(effects=(), samples=30_000, seed=1):
         rrw_variance=WALK,
         effects=effects,
     )
-    return _View(recording, ("wx", "wy"), _ModelSpec(), _FlickerBasis())
+    return build_view(recording, ("wx", "wy"), ModelSpec())
 
 
 def test_catalogue_has_the_stable_names_and_says_how():
@@ -68,7 +67,7 @@ def test_hann_periodogram_of_white_noise_has_mean_sigma_squared():
 def test_spike_statistic_is_gaussian_in_the_tail():
     """The deviation from the neighbours' median, over its scale, exceeds 3 as often as N(0, 1) does."""
     rng = np.random.default_rng(5)
-    z, _ = CATALOGUE["spikes"]._robust_z(rng.standard_normal(1_000_000))
+    z = robust_z(rng.standard_normal(1_000_000))
     expected = 2 * stats.norm.sf(3.0)
     observed = float(np.mean(np.abs(z) > 3.0))
     standard_error = np.sqrt(expected * (1 - expected) / len(z)) * 3  # ×3: 15-sample windows overlap
@@ -79,7 +78,7 @@ def test_spike_statistic_is_gaussian_in_the_tail():
 def test_clean_recording_triggers_no_detector():
     view = _view()
     for name in TESTED_EFFECTS:
-        detection = CATALOGUE[name].detect(view)
+        detection = DETECTORS[name].detect(view, ALPHA)
         assert not detection.significant, (name, detection)
         json.dumps(detection.as_dict())
 
@@ -128,19 +127,19 @@ def test_clean_recording_triggers_no_detector():
 )
 def test_each_detector_finds_its_effect(injection, name, check):
     view = _view([injection])
-    detection = CATALOGUE[name].detect(view)
+    detection = DETECTORS[name].detect(view, ALPHA)
     assert detection.significant, detection
     assert check(detection), detection
 
 
 def test_fitted_sinusoid_and_step_recover_the_parameters():
     view = _view(["sinusoid:amplitude=5e-4,frequency=3.3,phase=0.4"])
-    detection = CATALOGUE["sinusoid"].detect(view)
-    fitted = CATALOGUE["sinusoid"].fit(view, detection)
+    detection = DETECTORS["sinusoid"].detect(view, ALPHA)
+    fitted = REMEDIES["sinusoid"].fit(view, detection, ALPHA)
     assert fitted.parameters["wx"]["frequency_hz"] == pytest.approx(3.3, abs=1e-3)
     assert fitted.parameters["wx"]["amplitude"] == pytest.approx(5e-4, rel=0.15)
     view = _view(["steps:size=3e-3,time=0.5"])
-    fitted = CATALOGUE["steps"].fit(view, CATALOGUE["steps"].detect(view))
+    fitted = REMEDIES["steps"].fit(view, DETECTORS["steps"].detect(view, ALPHA), ALPHA)
     jumps = fitted.parameters["wx"]["jumps"]
     assert len(jumps) == 1
     assert jumps[0]["height"] == pytest.approx(3e-3, rel=0.3)
@@ -150,15 +149,15 @@ def test_temperature_not_testable_when_absent_or_constant():
     recording = simulate_recording(
         3000, 100.0, rng=np.random.default_rng(0), white_variance=WHITE, temperature=np.full(3000, 25.0)
     )
-    view = _View(recording, ("wx", "wy"), _ModelSpec(), _FlickerBasis())
-    detection = CATALOGUE["temperature"].detect(view)
+    view = build_view(recording, ("wx", "wy"), ModelSpec())
+    detection = DETECTORS["temperature"].detect(view, ALPHA)
     assert not detection.testable and not detection.significant
     assert "constant" in detection.note
     recording = simulate_recording(
         3000, 100.0, rng=np.random.default_rng(0), white_variance=WHITE, temperature=None
     )
-    view = _View(recording, ("wx", "wy"), _ModelSpec(), _FlickerBasis())
-    assert "no temperature column" in CATALOGUE["temperature"].detect(view).note
+    view = build_view(recording, ("wx", "wy"), ModelSpec())
+    assert "no temperature column" in DETECTORS["temperature"].detect(view, ALPHA).note
 
 
 @pytest.mark.parametrize(

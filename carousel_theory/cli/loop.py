@@ -7,7 +7,7 @@ import json
 from pathlib import Path
 
 from carousel_theory.cli._recording_options import add_recording_options
-from carousel_theory.closed_loop import run_loop, write_report
+from carousel_theory.closed_loop import DEFAULT_ALPHA, run_loop, write_report
 from carousel_theory.data import load_recording
 
 
@@ -42,7 +42,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--axes", metavar="A[,B]", help="the gyro axes to analyse (default wx,wy)")
     parser.add_argument(
-        "--alpha", type=float, default=0.01, help="false-alarm rate of each test (default 0.01)"
+        "--alpha",
+        type=float,
+        default=DEFAULT_ALPHA,
+        help="family-wise false-alarm rate of the whole run: every test of every iteration and the final "
+        "Allan-variance misfit test (default 0.01)",
     )
     parser.set_defaults(handler=run)
 

@@ -1,0 +1,201 @@
+"""How the loop spends its false-alarm rate α, and the null distribution of its final misfit test.
+
+**The split of α (Bonferroni).** A run of the loop makes a sequence of decisions: in iteration k every
+testable detector is asked whether its effect is present, and at the end the Allan variance is asked
+whether it still misfits the model. The loop's family-wise false-alarm rate is bounded by the sum of the
+rates of all these tests, so α is split in advance:
+
+- the final misfit test gets α/4;
+- iteration k gets (3α/4) · 6/(π² k²) (Σ_k 6/(π² k²) = 1), shared equally among the J_k detectors
+  tested in it: each detector runs at (3α/4) · 6/(π² k² J_k), and is itself family-wise over its own scan
+  and the axes (Bonferroni).
+
+On a clean record the loop can name something only in iteration 1 or in the final test, so its
+false-alarm rate is at most (3α/4) · 6/π² + α/4 ≈ 0.71 α; on a record with effects, the rate of naming
+anything beyond them is at most α. A decision that an added effect "explains its own evidence" uses the
+rate of the iteration in which it was added.
+
+**The final misfit test.** Each Allan-variance estimate of the final fit is standardised by its
+χ²_ν distribution (ν the equivalent degrees of freedom of the fitted model) into a z-value.
+
+- *Short τ* (more than LONG_TAU_TERMS squared differences averaged): the estimate is a sum of thousands
+  of terms and χ²_ν with the Satterthwaite ν describes it well; the largest |z| of these points, over
+  τ and axes, gets the Bonferroni p-value of the normal tail.
+- *Long τ* (the few points with 7 to LONG_TAU_TERMS differences): the estimates are far from χ²_ν,
+  correlated across τ, and the fitted parameters rest on them, so no asymptotic reference is used. The
+  null distribution of the largest |z| of these points is taken from the fitted model by a parametric
+  bootstrap: each replicate draws the block sums of every axis from the fitted model exactly
+  (:func:`~carousel_theory.closed_loop.residual_model.simulate_block_sums`), computes the same Allan
+  variances and z-values against the *fitted* curve, and p = (1 + #{T* ≥ T}) / (B + 1) is exact-size for
+  B + 1 exchangeable draws (Davison & Hinkley 1997, §4.2). The observed curve was fitted to the observed
+  points, which pulls its z-values towards 0: the test is conservative for the estimation of the
+  parameters. B = ⌈1/α'⌉ − 1 with α' the level of this half (the smallest B at which p can reach α'),
+  the model being rejected when no replicate reaches T; the replicates are drawn sequentially and stopped
+  at the first T* ≥ T, which makes p > α' certain (Besag & Clifford 1991).
+
+Each half runs at half the final test's rate (Bonferroni); the reported p is 2 min(p_short, p_long).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from carousel_theory.closed_loop.residual_model import ResidualFit, chi_square_z, simulate_block_sums
+
+__all__ = [
+    "DEFAULT_ALPHA",
+    "FINAL_SHARE",
+    "MisfitTest",
+    "detector_alpha",
+    "final_alpha",
+    "iteration_alpha",
+    "misfit_test",
+]
+
+#: Family-wise false-alarm rate of a whole run of the loop.
+DEFAULT_ALPHA = 0.01
+#: Share of α given to the final misfit test; the rest is spread over the iterations.
+FINAL_SHARE = 0.25
+#: Allan-variance points averaging more squared differences than this are referred to χ²_ν; the others
+#: (the longest τ) to the parametric bootstrap.
+LONG_TAU_TERMS = 2000
+#: Seed of the bootstrap's generator: the loop is deterministic for a given recording.
+BOOTSTRAP_SEED = 20140515
+
+
+def iteration_alpha(alpha: float, iteration: int) -> float:
+    """The share of α of iteration k = ``iteration`` (1, 2, …): (1 − FINAL_SHARE) α · 6/(π² k²)."""
+    return (1.0 - FINAL_SHARE) * alpha * 6.0 / (math.pi**2 * iteration**2)
+
+
+def detector_alpha(alpha: float, iteration: int, detectors: int) -> float:
+    """The rate of each of ``detectors`` detectors in iteration k (Bonferroni within the iteration)."""
+    return iteration_alpha(alpha, iteration) / max(detectors, 1)
+
+
+def final_alpha(alpha: float) -> float:
+    """The rate of the final Allan-variance misfit test."""
+    return FINAL_SHARE * alpha
+
+
+@dataclass(frozen=True)
+class MisfitTest:
+    """The final test: its statistic (largest |z| over τ and axes), where it is, the bootstrap p-value,
+    how many replicates were drawn, and whether it rejects the model at ``alpha``."""
+
+    statistic: float
+    axis: str
+    z: float
+    tests: int
+    p_value: float
+    replicates: int
+    alpha: float
+
+    @property
+    def rejects(self) -> bool:
+        return self.p_value <= self.alpha
+
+
+def _octave_allan(block_sums: np.ndarray, levels: int, block: int) -> np.ndarray:
+    """Non-overlapping Allan variance (TIM 2014 eq. (20)) at m = block · 2^k, k < levels, from the sums of
+    ``block`` samples (pairwise sums give the longer clusters, as :mod:`carousel_theory.allan` does)."""
+    result, sums = np.empty(levels), block_sums
+    for level in range(levels):
+        if level:
+            count = len(sums) // 2
+            sums = sums[: 2 * count : 2] + sums[1 : 2 * count : 2]
+        differences = np.diff(sums)
+        size = block * 2**level
+        result[level] = np.dot(differences, differences) / (2.0 * size**2 * len(differences))
+    return result
+
+
+@dataclass(frozen=True)
+class _LongTau:
+    """The long-τ points of one axis: where they start in the fit, the block size, the fitted curve."""
+
+    fit: ResidualFit
+    first: int
+
+    @property
+    def block(self) -> int:
+        return int(self.fit.sizes[self.first])
+
+    def z(self, observed: np.ndarray) -> np.ndarray:
+        fit, first = self.fit, self.first
+        return chi_square_z(observed, fit.model[first:], fit.edf[first:])
+
+
+def _split(fit: ResidualFit, length: int) -> int:
+    """Index of the first point with at most LONG_TAU_TERMS differences."""
+    terms = length // fit.sizes - 1
+    long = np.flatnonzero(terms <= LONG_TAU_TERMS)
+    return int(long[0]) if len(long) else len(fit.sizes)
+
+
+def _short_tau_log_p(fits: dict[str, ResidualFit], firsts: dict[str, int]) -> tuple[float, int, float, str]:
+    """Bonferroni p-value of the largest |z| among the short-τ points (χ²_ν reference)."""
+    best, best_axis, count = 0.0, "", 0
+    for axis, fit in fits.items():
+        z = chi_square_z(fit.observed[: firsts[axis]], fit.model[: firsts[axis]], fit.edf[: firsts[axis]])
+        count += len(z)
+        if len(z) and float(np.max(np.abs(z))) > abs(best):
+            best, best_axis = float(z[np.argmax(np.abs(z))]), axis
+    p = min(1.0, 2.0 * count * float(stats.norm.sf(abs(best)))) if count else 1.0
+    return p, count, best, best_axis
+
+
+def _long_statistic(parts: dict[str, _LongTau], observed: dict[str, np.ndarray]) -> tuple[float, str, float]:
+    best = (0.0, "", 0.0)
+    for axis, part in parts.items():
+        z = part.z(observed[axis])
+        if len(z) and float(np.max(np.abs(z))) > best[0]:
+            best = (float(np.max(np.abs(z))), axis, float(z[np.argmax(np.abs(z))]))
+    return best
+
+
+def _bootstrap_p(
+    parts: dict[str, _LongTau], statistic: float, length: int, alpha: float
+) -> tuple[float, int]:
+    """Sequential parametric-bootstrap p-value of the long-τ statistic (module docstring)."""
+    budget = math.ceil(1.0 / alpha - 1e-9) - 1  # the smallest B at which p can reach alpha
+    allowed = math.floor(alpha * (budget + 1) + 1e-9) - 1  # p ≤ alpha ⟺ exceedances ≤ allowed
+    rng = np.random.default_rng(BOOTSTRAP_SEED)
+    exceedances, drawn = 0, 0
+    while drawn < budget and exceedances <= allowed:
+        replicate = {
+            axis: _octave_allan(
+                simulate_block_sums(part.fit.noise, length, part.block, rng),
+                len(part.fit.sizes) - part.first,
+                part.block,
+            )
+            for axis, part in parts.items()
+        }
+        exceedances += _long_statistic(parts, replicate)[0] >= statistic
+        drawn += 1
+    # Stopped early: p > alpha for certain; the sequential estimate (Besag & Clifford 1991).
+    p_value = (1 + exceedances) / (budget + 1) if drawn == budget else min(1.0, exceedances / drawn)
+    return p_value, drawn
+
+
+def misfit_test(cleaned: dict[str, np.ndarray], fits: dict[str, ResidualFit], alpha: float) -> MisfitTest:
+    """Test of the Allan variance of every axis against the fitted model, at ``alpha``: short τ by the
+    χ²_ν reference, long τ by a parametric bootstrap, each at α/2 (module docstring)."""
+    length = len(next(iter(cleaned.values())))
+    firsts = {axis: _split(fit, length) for axis, fit in fits.items()}
+    p_short, count, z_short, axis_short = _short_tau_log_p(fits, firsts)
+    parts = {axis: _LongTau(fit, firsts[axis]) for axis, fit in fits.items() if firsts[axis] < len(fit.sizes)}
+    tests = count + sum(len(p.fit.sizes) - p.first for p in parts.values())
+    if not parts:
+        return MisfitTest(abs(z_short), axis_short, z_short, tests, p_short, 0, alpha)
+    observed = {axis: part.fit.observed[part.first :] for axis, part in parts.items()}
+    statistic, axis, z = _long_statistic(parts, observed)
+    p_long, drawn = _bootstrap_p(parts, statistic, length, alpha / 2.0)
+    p_value = min(1.0, 2.0 * min(p_short, p_long))
+    if p_short < p_long:
+        statistic, axis, z = abs(z_short), axis_short, z_short
+    return MisfitTest(statistic, axis, z, tests, p_value, drawn, alpha)

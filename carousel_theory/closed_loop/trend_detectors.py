@@ -1,0 +1,258 @@
+"""Detectors of slow deterministic effects: a warm-up transient, a temperature-driven bias, bias steps.
+
+Each is a GLS regression statistic (:mod:`carousel_theory.closed_loop.linear_statistics`) referred to
+Student's t with the Satterthwaite degrees of freedom of the fitted noise variances, Bonferroni over
+its scan and the axes. The warm-up and temperature statistics are computed jointly with the stochastic
+term that could absorb them: the noise model is refitted on the residual without the regressor, with
+a 1/f term for the warm-up (a transient and 1/f noise share the low frequencies) and with the random walk
+for the temperature (a ramp and a random walk share them), so the weaker effect is not hidden by the
+inflated stochastic term fitted with it still in the data.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from carousel_theory.closed_loop.detection import (
+    Detection,
+    log10_two_sided_t,
+    threshold_two_sided,
+    threshold_two_sided_t,
+    untestable,
+)
+from carousel_theory.closed_loop.linear_statistics import (
+    COMPETING_TERM_LEVEL,
+    gls_block,
+    gls_difference_solve,
+    gls_weights,
+    ranking_noise,
+    regressor_test,
+    step_scan,
+)
+from carousel_theory.closed_loop.residual_model import ModelTerms, statistic_variance_dof
+from carousel_theory.closed_loop.view import FittedEffect, ResidualView
+
+__all__ = ["StepsDetector", "TemperatureDetector", "WarmupDetector"]
+
+
+@dataclass(frozen=True)
+class _AxisResult:
+    axis: str
+    z: float
+    log10_p: float
+    dof: float
+    details: dict[str, float]
+
+
+def _best(results: list[_AxisResult], alpha: float) -> tuple[_AxisResult, tuple[str, ...]]:
+    significant = tuple(r.axis for r in results if r.log10_p < math.log10(alpha))
+    return min(results, key=lambda r: r.log10_p), significant
+
+
+class WarmupDetector:
+    """max over time constants τ_c of |z| of the GLS amplitude of e^{−t/τ_c}, jointly with a 1/f term."""
+
+    name = "warmup"
+    stochastic = False
+    grid_size = 8
+
+    def _grid(self, view: ResidualView) -> np.ndarray:
+        span = float(view.time[-1] - view.time[0])
+        low = max(span / 500.0, 5.0 / view.sample_rate)
+        return np.geomspace(low, span / 4.0, self.grid_size)
+
+    def _axis(self, view: ResidualView, axis: str, tests: int) -> _AxisResult:
+        relative = view.time - view.time[0]
+        noise = ranking_noise(view, axis)
+        ranked = max(
+            (
+                (regressor_test(view, axis, np.exp(-relative / tc), quick=True, ranking=noise).z, float(tc))
+                for tc in self._grid(view)
+            ),
+            key=lambda pair: abs(pair[0]),
+        )
+        joint = ModelTerms(view.spec.terms.ar_order, flicker=True)
+        result = regressor_test(view, axis, np.exp(-relative / ranked[1]), refit_terms=joint)
+        details = {
+            "time_constant_s": ranked[1],
+            "amplitude": result.amplitude,
+            "degrees_of_freedom": result.dof,
+            "competing_flicker_p": result.competing_p,
+        }
+        return _AxisResult(
+            axis, result.z, log10_two_sided_t(result.z, tests, result.dof), result.dof, details
+        )
+
+    def detect(self, view: ResidualView, alpha: float) -> Detection:
+        tests = self.grid_size * len(view.axes)
+        best, axes = _best([self._axis(view, axis, tests) for axis in view.axes], alpha)
+        return Detection(
+            self.name,
+            abs(best.z),
+            "max abs z of an exponential transient (Student t)",
+            threshold_two_sided_t(alpha, tests, best.dof),
+            best.log10_p,
+            bool(axes),
+            axes,
+            {"axis": best.axis, **best.details},
+        )
+
+    def fit(self, view: ResidualView, detection: Detection, alpha: float) -> FittedEffect:
+        """The time constant maximising the GLS fit (the detector's own criterion) on a fine grid around
+        the detected one; the amplitude by GLS."""
+        relative = view.time - view.time[0]
+        grid = self._grid(view)
+        centre = float(detection.details.get("time_constant_s") or grid[0])
+        fine = np.geomspace(max(centre / 4.0, grid[0] / 2.0), min(centre * 4.0, grid[-1] * 2.0), 13)
+        signals, fitted = {}, {}
+        for axis in view.axes:
+            best = (-1.0, centre, 0.0)
+            for time_constant in fine:
+                regressor = np.exp(-relative / time_constant)
+                weights = gls_weights(view, axis, regressor)
+                information = float(np.dot(weights, regressor))
+                projection = float(np.dot(weights, view.residuals[axis]))
+                if information > 0 and projection**2 / information > best[0]:
+                    best = (projection**2 / information, float(time_constant), projection / information)
+            _, time_constant, amplitude = best
+            curve = amplitude * np.exp(-relative / time_constant)
+            signals[axis] = curve - curve.mean()
+            fitted[axis] = {"amplitude": amplitude, "time_constant_s": time_constant}
+        # Detected jointly with a 1/f term: the two enter the model together.
+        joint = float(detection.details.get("competing_flicker_p", 1.0)) < COMPETING_TERM_LEVEL
+        terms = ModelTerms(flicker=True) if joint else None
+        return FittedEffect(self.name, fitted, signals=signals, terms=terms)
+
+
+class TemperatureDetector:
+    """|z| of the GLS coefficient of the temperature column, jointly with the rate random walk."""
+
+    name = "temperature"
+    stochastic = False
+    statistic_name = "abs z of the temperature regression (Student t)"
+
+    def detect(self, view: ResidualView, alpha: float) -> Detection:
+        tests = len(view.axes)
+        if view.temperature is None:
+            note = "no temperature column: a temperature effect cannot be tested"
+            return untestable(self.name, self.statistic_name, threshold_two_sided(alpha, tests), note)
+        if float(np.ptp(view.temperature)) == 0.0:
+            note = "the temperature column is constant: no temperature effect can be tested"
+            return untestable(self.name, self.statistic_name, threshold_two_sided(alpha, tests), note)
+        results = []
+        for axis in view.axes:
+            result = regressor_test(view, axis, view.temperature, refit_terms=view.spec.terms)
+            found = {"coefficient_rad_s_per_degC": result.amplitude, "degrees_of_freedom": result.dof}
+            log10_p = log10_two_sided_t(result.z, tests, result.dof)
+            results.append(_AxisResult(axis, result.z, log10_p, result.dof, found))
+        best, axes = _best(results, alpha)
+        details: dict[str, Any] = {
+            "axis": best.axis,
+            **best.details,
+            "temperature_range_degC": float(np.ptp(view.temperature)),
+        }
+        return Detection(
+            self.name,
+            abs(best.z),
+            self.statistic_name,
+            threshold_two_sided_t(alpha, tests, best.dof),
+            best.log10_p,
+            bool(axes),
+            axes,
+            details,
+        )
+
+    def fit(self, view: ResidualView, detection: Detection, alpha: float) -> FittedEffect:
+        """k by GLS on each axis (the detector's own estimate); k (T − T̄) subtracted."""
+        assert view.temperature is not None
+        centred = view.temperature - view.temperature.mean()
+        signals, fitted = {}, {}
+        for axis in view.axes:
+            weights = gls_weights(view, axis, view.temperature)
+            coefficient = float(np.dot(weights, view.residuals[axis]) / np.dot(weights, view.temperature))
+            signals[axis] = coefficient * centred
+            fitted[axis] = {"coefficient_rad_s_per_degC": coefficient}
+        return FittedEffect(self.name, fitted, signals=signals)
+
+
+@dataclass(frozen=True)
+class _Scan:
+    z: np.ndarray
+    sd: float
+    information: float
+    dof: float
+
+
+class StepsDetector:
+    """max over t₀ of |z| of the GLS estimate of a bias step after sample t₀, Bonferroni over positions."""
+
+    name = "steps"
+    stochastic = False
+    maximum_steps = 5
+
+    def _scan(self, view: ResidualView, axis: str) -> _Scan:
+        """z of a step after every block under the fit (no refit: a refit without the largest increment
+        of the random walk lowers σ_q² enough to make the scan's maximum anticonservative); the
+        Satterthwaite degrees of freedom carry the uncertainty of the fitted σ_q²."""
+        scan = step_scan(view, axis)
+        variance, dof = statistic_variance_dof(view.fits[axis].noise, scan.middle_weights)
+        sd = math.sqrt(max(variance, 1e-300))
+        return _Scan(scan.statistics / sd, sd, scan.information, dof)
+
+    def _tests(self, view: ResidualView) -> int:
+        return (len(view.time) // gls_block(view) - 1) * len(view.axes)
+
+    def detect(self, view: ResidualView, alpha: float) -> Detection:
+        n, tests = len(view.time), self._tests(view)
+        results = []
+        for axis in view.axes:
+            scan = self._scan(view, axis)
+            index = int(np.argmax(np.abs(scan.z)))
+            z = float(scan.z[index])
+            at = min((index + 1) * gls_block(view), n - 1)
+            details = {"time_s": float(view.time[at]), "height": z * scan.sd / scan.information}
+            results.append(_AxisResult(axis, z, log10_two_sided_t(z, tests, scan.dof), scan.dof, details))
+        best, axes = _best(results, alpha)
+        return Detection(
+            self.name,
+            abs(best.z),
+            "max abs z of a bias step (GLS, Student t)",
+            threshold_two_sided_t(alpha, tests, best.dof),
+            best.log10_p,
+            bool(axes),
+            axes,
+            {"axis": best.axis, **best.details},
+        )
+
+    def _jumps(self, view: ResidualView, axis: str, threshold: float, scan: _Scan) -> tuple[np.ndarray, list]:
+        n, block = len(view.time), gls_block(view)
+        statistic = scan.z * scan.sd  # u_t
+        total, jumps = np.zeros(n), []
+        for _ in range(self.maximum_steps):
+            index = int(np.argmax(np.abs(statistic)))
+            if abs(statistic[index]) / scan.sd <= threshold:
+                break
+            height = float(statistic[index] / scan.information)
+            at = (index + 1) * block
+            # Remove this jump from the scan: u changes by height · Σ_Δ⁻¹ e_index.
+            impulse = np.zeros(len(statistic))
+            impulse[index] = 1.0
+            statistic = statistic - height * gls_difference_solve(view, axis, impulse)
+            step = height * (np.arange(n) >= at)
+            total += step - step.mean()
+            jumps.append({"time_s": float(view.time[at]), "height": height})
+        return total, jumps
+
+    def fit(self, view: ResidualView, detection: Detection, alpha: float) -> FittedEffect:
+        """Each jump at the maximum |z|, its height by GLS, removed from the scan; up to 5 jumps."""
+        signals, fitted = {}, {}
+        for axis in view.axes:
+            scan = self._scan(view, axis)
+            threshold = threshold_two_sided_t(alpha, self._tests(view), scan.dof)
+            signals[axis], jumps = self._jumps(view, axis, threshold, scan)
+            fitted[axis] = {"jumps": jumps}
+        return FittedEffect(self.name, fitted, signals=signals)
