@@ -29,7 +29,8 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from dataclasses import replace
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -42,10 +43,14 @@ from carousel_theory._validation import (
     check_positive_integer,
     check_positive_real,
 )
+from carousel_theory.noise_model import (
+    QUANTIZATION_ALLAN_VARIANCE,
+    RRW_ALLAN_VARIANCE,
+    WHITE_ALLAN_VARIANCE,
+    NoiseModel,
+)
 from carousel_theory.processes import fractional_coefficients
-
-if TYPE_CHECKING:
-    from carousel_theory.fitting import NoiseModel
+from carousel_theory.tau_covariance import allan_estimate_variance
 
 __all__ = [
     "ESTIMATORS",
@@ -62,25 +67,19 @@ __all__ = [
     "graycode_allan_variance",
     "model_allan_variance",
     "octave_cluster_sizes",
+    "with_model_intervals",
 ]
 
 ESTIMATORS = ("overlapping", "non-overlapping")
 NOISE_TYPES = ("white", "rrw", "flicker", "quantization")
 
 # Symbols of the closed forms (carousel_theory.symbols): m samples per cluster, per-sample variances,
-# sample interval.
+# sample interval. The closed forms themselves live in carousel_theory.noise_model.
 _m = symbols.cluster_size
 _white_variance = symbols.white_sample_variance
 _rrw_variance = symbols.rrw_increment_variance
 _quantization = symbols.quantization_step
 _sample_interval = symbols.sample_interval
-
-#: Exact Allan variance of discrete white noise of per-sample variance σ_WN², m samples per cluster.
-WHITE_ALLAN_VARIANCE: sp.Expr = _white_variance / _m
-#: Exact Allan variance of the rate random walk of TIM 2014 eq. (2), increment variance σ_q² per sample.
-RRW_ALLAN_VARIANCE: sp.Expr = _rrw_variance * (2 * _m**2 + 1) / (6 * _m)
-#: Exact Allan variance of a white angle error of variance Q² differenced into the rate (τ = mΔt).
-QUANTIZATION_ALLAN_VARIANCE: sp.Expr = 3 * _quantization**2 / (_m * _sample_interval) ** 2
 
 _white_numeric = sp.lambdify((_white_variance, _m), WHITE_ALLAN_VARIANCE, "numpy")
 _rrw_numeric = sp.lambdify((_rrw_variance, _m), RRW_ALLAN_VARIANCE, "numpy")
@@ -538,20 +537,13 @@ def allan_variance(
         sums = _non_overlapping_sums(centered, sizes, octave)
         terms = length // sizes - 1
     avar = sums / (2.0 * sizes.astype(np.float64) ** 2 * terms)
-    stride = 1 if estimator == "overlapping" else None
-    edf = np.array(
-        [
-            equivalent_degrees_of_freedom(noise, int(m), int(k), stride or int(m), length, sample_rate)
-            for m, k in zip(sizes, terms, strict=True)
-        ]
-    )
-    upper_quantile = stats.chi2.ppf((1.0 + confidence) / 2.0, edf)
-    lower_quantile = stats.chi2.ppf((1.0 - confidence) / 2.0, edf)
+    edf = _degrees_of_freedom(noise, sizes, terms, length, sample_rate, estimator)
+    low, high = _chi_square_interval(avar, edf, confidence)
     return AllanResult(
         tau=sizes / sample_rate,
         avar=avar,
-        ci_low=edf * avar / upper_quantile,
-        ci_high=edf * avar / lower_quantile,
+        ci_low=low,
+        ci_high=high,
         clusters=length // sizes,
         estimator=estimator,
         samples_per_cluster=sizes,
@@ -560,6 +552,42 @@ def allan_variance(
         confidence=confidence,
         noise=noise if isinstance(noise, str) else "model",
     )
+
+
+def _chi_square_interval(avar: np.ndarray, edf: np.ndarray, confidence: float) -> tuple[np.ndarray, np.ndarray]:
+    """ν σ̂²/χ²_ν((1+level)/2) … ν σ̂²/χ²_ν((1−level)/2)."""
+    upper_quantile = stats.chi2.ppf((1.0 + confidence) / 2.0, edf)
+    lower_quantile = stats.chi2.ppf((1.0 - confidence) / 2.0, edf)
+    return edf * avar / upper_quantile, edf * avar / lower_quantile
+
+
+def _degrees_of_freedom(
+    noise: Any, sizes: np.ndarray, terms: np.ndarray, length: int, sample_rate: float, estimator: str
+) -> np.ndarray:
+    """ν at each m: for a NoiseModel 2σ_A⁴/Var σ̂² from the exact τ-covariance engine
+    (:mod:`carousel_theory.tau_covariance`), otherwise by :func:`equivalent_degrees_of_freedom`."""
+    if isinstance(noise, NoiseModel):
+        if not noise.terms():
+            raise ValueError(f"noise={noise!r}: the model has no noise component")
+        variance = allan_estimate_variance(noise, sizes, length, estimator=estimator)
+        return np.asarray(2.0 * noise.allan_variance(sizes) ** 2 / variance, dtype=np.float64)
+    return np.array(
+        [
+            equivalent_degrees_of_freedom(
+                noise, int(m), int(k), 1 if estimator == "overlapping" else int(m), length, sample_rate
+            )
+            for m, k in zip(sizes, terms, strict=True)
+        ]
+    )
+
+
+def with_model_intervals(result: AllanResult, model: NoiseModel, length: int) -> AllanResult:
+    """``result`` with degrees of freedom and χ² intervals from ``model`` (no new pass over the data)."""
+    sizes = np.asarray(result.samples_per_cluster, dtype=np.int64)
+    terms = np.asarray(result.terms, dtype=np.int64)
+    edf = _degrees_of_freedom(model, sizes, terms, length, float(model.sample_rate), result.estimator)
+    low, high = _chi_square_interval(result.avar, edf, result.confidence)
+    return replace(result, edf=edf, ci_low=low, ci_high=high, noise="model")
 
 
 def flicker_allan_variance(

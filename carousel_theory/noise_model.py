@@ -221,7 +221,18 @@ class NoiseModel:
 
         Searched on a log grid of 8 points per octave of the stationary Allan variance.
         """
-        key = ("minimum", int(length))
+        key = (  # ``extra`` is shared by models made with dataclasses.replace: key on every parameter
+            "minimum",
+            int(length),
+            self.white_variance,
+            self.rrw_variance,
+            self.flicker_variance,
+            self.flicker_d,
+            self.quantization,
+            self.ar_variance,
+            self.ar_coefficients,
+            self.sample_rate,
+        )
         if key not in self.extra:
             top = max(1, int(length) // 3)
             count = 8 * max(1, int(math.log2(top)) + 1)

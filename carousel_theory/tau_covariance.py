@@ -50,7 +50,7 @@ from scipy.signal import fftconvolve
 
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
 
-__all__ = ["FLICKER_REACH", "TauCovariance", "allan_estimate_covariance"]
+__all__ = ["FLICKER_REACH", "TauCovariance", "allan_estimate_covariance", "allan_estimate_variance"]
 
 #: The 1/f cross-covariance is summed over this many (m_i + m_j) lags beyond the filters' support; the
 #: rest is bounded (module text).
@@ -304,3 +304,20 @@ def allan_estimate_covariance(
     allan = model.allan_variance(sizes)
     edf = 2.0 * allan**2 / np.diag(covariance)
     return TauCovariance(sizes, covariance, allan, edf, bound, estimator)
+
+
+def allan_estimate_variance(
+    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping"
+) -> np.ndarray:
+    """Var σ̂²(m) at each m (the diagonal of :func:`allan_estimate_covariance`, without the other pairs)."""
+    sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
+    terms = _terms_count(sizes, int(length), estimator)
+    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
+    result = np.empty(len(sizes))
+    for i, (m, K) in enumerate(zip(sizes.tolist(), terms.tolist(), strict=True)):
+        if estimator == "overlapping" and not long_terms:
+            total = _finite_sum(model, m, m, K, K)
+        else:
+            total = _lag_sum(model, m, m, K, K, estimator)[0]
+        result[i] = total / (2.0 * float(m) ** 4 * K * K)
+    return result
