@@ -199,28 +199,80 @@ def _non_overlapping_sums(centered: np.ndarray, sizes: np.ndarray, octave: bool)
     return result
 
 
+#: Samples per chunk of the overlapping sums (8 × 2¹⁴ bytes: the chunk stays in the L2 cache).
+_CHUNK = 1 << 14
+
+
+def _squared_difference_sum(window: np.ndarray, m: int, terms: int, buffer: np.ndarray) -> float:
+    """Σ_{s<terms} (window[s + m] − window[s])², chunk by chunk."""
+    total = 0.0
+    for start in range(0, terms, len(buffer)):
+        stop = min(start + len(buffer), terms)
+        chunk = buffer[: stop - start]
+        np.subtract(window[m + start : m + stop], window[start:stop], out=chunk)
+        # Square and add without BLAS: a threaded ddot costs more in synchronisation than it saves here.
+        np.multiply(chunk, chunk, out=chunk)
+        total += float(np.add.reduce(chunk))
+    return total
+
+
+#: Octave levels with m up to this many samples are computed together, chunk by chunk, in cache.
+_FUSED_MAXIMUM = 2048
+
+
+def _fused_small_levels(centered: np.ndarray, small: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Sums of squared differences for the small octave m, and the window sums at the largest of them.
+
+    Each chunk of starts is read once; its window sums are doubled level by level in cache
+    (w_{2m}[s] = w_m[s] + w_m[s + m], the same additions as a global doubling).
+    """
+    length, largest = len(centered), int(small[-1])
+    totals = np.zeros(len(small))
+    windows = np.empty(length - largest + 1)
+    for first in range(0, length - 1, _CHUNK):
+        window = centered[first : first + _CHUNK + 2 * largest]
+        for level, m in enumerate(int(value) for value in small):
+            if level:
+                window = window[: len(window) - m // 2] + window[m // 2 :]
+            valid = min(_CHUNK, length - 2 * m + 1 - first)
+            if valid > 0:
+                difference = window[m : m + valid] - window[:valid]
+                np.multiply(difference, difference, out=difference)
+                totals[level] += float(np.add.reduce(difference))
+        count = min(_CHUNK, length - largest + 1 - first)
+        if count > 0:
+            windows[first : first + count] = window[:count]
+    return totals, windows
+
+
+def _overlapping_octave_sums(centered: np.ndarray, sizes: np.ndarray) -> np.ndarray:
+    """Octave overlapping sums: small m fused in cache, larger m by in-place doubling between two buffers."""
+    small = sizes[sizes <= _FUSED_MAXIMUM]
+    totals, window = _fused_small_levels(centered, small)
+    result = np.empty(len(sizes))
+    result[: len(small)] = totals
+    if len(small) == len(sizes):
+        return result
+    spare = np.empty_like(window)
+    buffer = np.empty(min(_CHUNK, len(window)))
+    count = len(window)  # number of windows of the current length
+    for level in range(len(small), len(sizes)):
+        m = int(sizes[level])
+        count -= m // 2
+        np.add(window[:count], window[m // 2 : m // 2 + count], out=spare[:count])
+        window, spare = spare, window
+        result[level] = _squared_difference_sum(window, m, count - m, buffer)
+    return result
+
+
 def _overlapping_sums(centered: np.ndarray, sizes: np.ndarray, octave: bool) -> np.ndarray:
     """Σ over every start sample of the squared difference of adjacent window sums, per cluster size.
 
     Overwrites ``centered`` on the octave path (callers pass an array of their own).
     """
-    result = np.empty(len(sizes))
     if octave:
-        # Window sums of length m at every start, doubled in place between two buffers: no allocation
-        # per τ (fresh arrays of 10⁷ samples cost more in page faults than the arithmetic).
-        window, spare = centered, np.empty_like(centered)  # ``centered`` is our own array: reuse it
-        differences = np.empty_like(centered)
-        count = len(centered)  # number of windows of the current length
-        for level, m in enumerate(sizes):
-            if level:
-                half = int(m) // 2
-                count -= half
-                np.add(window[:count], window[half : half + count], out=spare[:count])
-                window, spare = spare, window
-            terms = count - int(m)
-            np.subtract(window[m : m + terms], window[:terms], out=differences[:terms])
-            result[level] = np.dot(differences[:terms], differences[:terms])
-        return result
+        return _overlapping_octave_sums(centered, sizes)
+    result = np.empty(len(sizes))
     cumulative = np.concatenate(([0.0], np.cumsum(centered)))
     for i, m in enumerate(sizes):
         window = cumulative[m:] - cumulative[:-m]
