@@ -27,9 +27,8 @@ Model Allan variance
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -606,7 +605,9 @@ def allan_variance(
     )
 
 
-def _chi_square_interval(avar: np.ndarray, edf: np.ndarray, confidence: float) -> tuple[np.ndarray, np.ndarray]:
+def _chi_square_interval(
+    avar: np.ndarray, edf: np.ndarray, confidence: float
+) -> tuple[np.ndarray, np.ndarray]:
     """ν σ̂²/χ²_ν((1+level)/2) … ν σ̂²/χ²_ν((1−level)/2)."""
     upper_quantile = stats.chi2.ppf((1.0 + confidence) / 2.0, edf)
     lower_quantile = stats.chi2.ppf((1.0 - confidence) / 2.0, edf)

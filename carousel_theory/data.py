@@ -23,12 +23,11 @@ Long recordings (12 h at 1 kHz is 4.3·10⁷ rows)
 from __future__ import annotations
 
 import csv
-import io
 import math
 import zipfile
-from itertools import islice
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from itertools import islice
 from pathlib import Path
 from typing import Any
 
@@ -292,7 +291,10 @@ def _mapped_member(path: Path, info: zipfile.ZipInfo) -> np.ndarray | None:
         local = handle.read(30)
         if local[:4] != b"PK\x03\x04":
             raise ValueError(f"member {info.filename!r}: bad local header")
-        name_length, extra_length = int.from_bytes(local[26:28], "little"), int.from_bytes(local[28:30], "little")
+        name_length, extra_length = (
+            int.from_bytes(local[26:28], "little"),
+            int.from_bytes(local[28:30], "little"),
+        )
         handle.seek(info.header_offset + 30 + name_length + extra_length)
         version = np.lib.format.read_magic(handle)
         read_header = (
@@ -304,8 +306,9 @@ def _mapped_member(path: Path, info: zipfile.ZipInfo) -> np.ndarray | None:
         return None
     if int(np.prod(shape)) == 0:
         return np.zeros(shape, dtype=dtype)
-    order = "F" if fortran_order else "C"
-    return np.memmap(path, dtype=dtype, mode="r", offset=offset, shape=shape, order=order)
+    return np.memmap(
+        path, dtype=dtype, mode="r", offset=offset, shape=shape, order="F" if fortran_order else "C"
+    )
 
 
 def _csv_header(path: Path) -> tuple[list[str], str]:
@@ -352,7 +355,9 @@ def _read_csv(path: Path) -> dict[str, np.ndarray]:
             convert_options=arrow_csv.ConvertOptions(column_types=dict.fromkeys(header, arrow.float64())),
         )
     except (arrow.ArrowInvalid, UnicodeDecodeError) as error:
-        raise ValueError(f"{path}: unreadable CSV data ({_locate_bad_field(path, header, delimiter, error)})") from None
+        raise ValueError(
+            f"{path}: unreadable CSV data ({_locate_bad_field(path, header, delimiter, error)})"
+        ) from None
     if table.num_rows == 0:
         raise ValueError(f"{path}: the CSV file has a header but no data rows")
     columns = {}
@@ -365,11 +370,12 @@ def _locate_bad_field(path: Path, header: list[str], delimiter: str, error: Exce
     """Scan the file line by line for the first row with a wrong field count or a non-number."""
     with path.open("r", encoding="utf-8-sig", errors="replace", newline="") as handle:
         for row, fields in enumerate(csv.reader(islice(handle, 1, None), delimiter=delimiter)):
+            where = f"row {row} (counted from 0, header excluded)"
             if len(fields) != len(header):
-                return f"row {row} (counted from 0, header excluded) has {len(fields)} fields, the header {len(header)}"
+                return f"{where} has {len(fields)} fields, the header {len(header)}"
             for column, field_text in zip(header, fields, strict=True):
                 if field_text.strip() and not _looks_numeric(field_text):
-                    return f"row {row} (counted from 0, header excluded), column {column!r}: {field_text!r} is not a number"
+                    return f"{where}, column {column!r}: {field_text!r} is not a number"
     return str(error).splitlines()[0]
 
 
@@ -377,7 +383,9 @@ def _read_csv_numpy(path: Path, header: list[str], delimiter: str) -> dict[str, 
     try:
         table = np.loadtxt(path, delimiter=delimiter, skiprows=1, dtype=np.float64, ndmin=2, comments=None)
     except ValueError as error:
-        raise ValueError(f"{path}: unreadable CSV data ({_locate_bad_field(path, header, delimiter, error)})") from None
+        raise ValueError(
+            f"{path}: unreadable CSV data ({_locate_bad_field(path, header, delimiter, error)})"
+        ) from None
     if table.shape[0] == 0:
         raise ValueError(f"{path}: the CSV file has a header but no data rows")
     if table.shape[1] != len(header):

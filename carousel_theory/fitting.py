@@ -132,7 +132,7 @@ class FitResult:
 
     @property
     def p_value(self) -> float:
-        """P(χ²_ν ≥ ``chi_square``), ν = ``degrees_of_freedom``: the misfit test of the model (1 when ν = 0)."""
+        """P(χ²_ν ≥ ``chi_square``), ν = ``degrees_of_freedom``: the model's misfit test (1 when ν = 0)."""
         if self.degrees_of_freedom <= 0:
             return 1.0
         return float(stats.chi2.sf(self.chi_square, self.degrees_of_freedom))
@@ -250,8 +250,6 @@ def _shifted(model: NoiseModel, name: str, step: float) -> NoiseModel:
     if name == "quantization_squared":
         return replace(model, quantization=math.sqrt(model.quantization**2 + step))
     return replace(model, **{name: getattr(model, name) + step})
-
-
 
 
 # --- the observed Allan variance and the options ---------------------------------------------------
@@ -492,7 +490,9 @@ def _solve(
         theta, chi_square, _ = _generalized_least_squares(design, problem.observed, cholesky)
         if iteration == iterations or fixed_covariance is not None or not np.any(theta > 0):
             break
-        model = _model_with(problem.sample_rate, 0.0, dict(zip(problem.components, theta, strict=True)), d, problem.ar)
+        model = _model_with(
+            problem.sample_rate, 0.0, dict(zip(problem.components, theta, strict=True)), d, problem.ar
+        )
         covariance = allan_estimate_covariance(
             model, problem.sizes, problem.length, estimator=problem.estimator
         ).covariance
@@ -517,10 +517,7 @@ def _parameter_covariance(
     names = tuple(_PARAMETER[c] for c in problem.components)
     if problem.fit_d:
         upper, lower = min(d + 1e-4, 0.999), max(d - 1e-4, 0.001)
-        derivative = (
-            _design(problem, upper)
-            - _design(problem, lower)
-        ) @ theta / (upper - lower)
+        derivative = (_design(problem, upper) - _design(problem, lower)) @ theta / (upper - lower)
         jacobian = np.column_stack((jacobian, np.linalg.solve(cholesky, derivative)))
         names = (*names, "flicker_d")
     # Columns differ by many orders of magnitude: invert the information matrix of the column-scaled
@@ -563,8 +560,14 @@ def fit_observed(
     allan = observed.allan
     ar = _ar_coefficients(observed, options)
     problem = _Problem(
-        np.asarray(allan.samples_per_cluster)[used], allan.avar[used], options.components, ar,
-        observed.length, observed.sample_rate, allan.estimator, _fits_d(options),
+        np.asarray(allan.samples_per_cluster)[used],
+        allan.avar[used],
+        options.components,
+        ar,
+        observed.length,
+        observed.sample_rate,
+        allan.estimator,
+        _fits_d(options),
     )
     start_d = 0.5 if options.flicker_d is None else options.flicker_d
     theta, d, covariance, chi_square = _solve(problem, start_d, options.iterations, fixed_covariance)
@@ -578,7 +581,8 @@ def fit_observed(
     method = (
         f"generalized least squares on the {allan.estimator} Allan variance at {int(used.sum())} octave τ "
         f"({tau_used[0]:.4g} s … {tau_used[-1]:.4g} s), model-based covariance across τ, "
-        f"{options.iterations} iterations" + (", 1/f order d profiled" if problem.fit_d else "")
+        f"{options.iterations} iterations"
+        + (", 1/f order d profiled" if problem.fit_d else "")
         + (f", AR({len(ar)}) coefficients by Yule–Walker" if "ar" in options.components else "")
     )
     return FitResult(

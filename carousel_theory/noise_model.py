@@ -150,13 +150,18 @@ class NoiseModel:
     def unit(self, term: str) -> NoiseModel:
         """The same model with ``term`` at unit driving variance and every other term at zero."""
         zero = replace(
-            self, white_variance=0.0, rrw_variance=0.0, flicker_variance=0.0, quantization=0.0, ar_variance=0.0
+            self,
+            white_variance=0.0,
+            rrw_variance=0.0,
+            flicker_variance=0.0,
+            quantization=0.0,
+            ar_variance=0.0,
         )
         if term == "quantization":
             return replace(zero, quantization=1.0 / float(self.sample_rate))
         if term not in TERMS:
             raise ValueError(f"term={term!r}: must be one of {TERMS}")
-        return replace(zero, **{_FIELD[term]: 1.0})
+        return replace(zero, **{_FIELD[term]: 1.0})  # type: ignore[arg-type]
 
     @property
     def long_run_ar_variance(self) -> float:
@@ -171,7 +176,7 @@ class NoiseModel:
         return total
 
     def spectral_density(self, frequencies: Any) -> np.ndarray:
-        """Two-sided discrete spectral density of the rate (per-sample variance units) at ``frequencies`` Hz."""
+        """Two-sided discrete spectral density of the rate at ``frequencies`` (Hz)."""
         omega = 2.0 * np.pi * np.asarray(frequencies, dtype=np.float64) / float(self.sample_rate)
         total = np.zeros_like(omega)
         for term, variance in self.terms().items():
@@ -355,7 +360,7 @@ def spectral_density(
 
 
 def variogram(increment_covariance: np.ndarray) -> np.ndarray:
-    """D(h) = Σ_{|k|<h} (h − |k|) γ_z(k), h = 0 … len(γ_z): D(h) − D(h − 1) = γ_z(0) + 2 Σ_{k=1}^{h−1} γ_z(k)."""
+    """D(h) = Σ_{|k|<h} (h − |k|) γ_z(k), h = 0 … len(γ_z): each step adds γ_z(0) + 2 Σ_{0<k<h} γ_z(k)."""
     steps = increment_covariance[0] + 2.0 * np.concatenate(([0.0], np.cumsum(increment_covariance[1:])))
     return np.concatenate(([0.0], np.cumsum(steps)))
 

@@ -41,6 +41,7 @@ Equivalent degrees of freedom (Satterthwaite) come from the diagonal: ν_i = 2 E
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -125,7 +126,11 @@ def _piece_sums(ramps: list[tuple[int, int]], start: int, stop: int, K_i: int, K
     for t in range(points):
         white, rrw = _cross_values(ramps, start + t)
         count = _pair_count(start + t, K_i, K_j)
-        values[0][t], values[1][t], values[2][t] = count * white * white, count * white * rrw, count * rrw * rrw
+        values[0][t], values[1][t], values[2][t] = (
+            count * white * white,
+            count * white * rrw,
+            count * rrw * rrw,
+        )
     if length <= 8:
         return np.array([sum(row) for row in values], dtype=object)
     sums = []
@@ -133,7 +138,7 @@ def _piece_sums(ramps: list[tuple[int, int]], start: int, stop: int, K_i: int, K
         total, differences = 0, list(row)
         for k in range(8):
             total += differences[0] * math.comb(length, k + 1)
-            differences = [b - a for a, b in zip(differences, differences[1:], strict=False)]
+            differences = [b - a for a, b in itertools.pairwise(differences)]
         sums.append(total)
     return np.array(sums, dtype=object)
 
@@ -149,7 +154,7 @@ def _finite_gram(m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[int, int, int,
         cuts.update((q + 1, q + 2))
     edges = sorted(c for c in cuts if low <= c <= high + 1)
     total = np.zeros(3, dtype=object)
-    for start, stop in zip(edges, edges[1:], strict=False):
+    for start, stop in itertools.pairwise(edges):
         total = total + _piece_sums(ramps, start, stop, K_i, K_j)
     spikes: dict[int, int] = {}
     for q, w in ramps:  # quantization: c_Q(δ) = Σ w [δ = q + 2]
@@ -161,7 +166,7 @@ def _finite_gram(m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[int, int, int,
         quantization[0] += count * weight * weight
         quantization[1] += count * weight * white
         quantization[2] += count * weight * rrw
-    return (int(total[0]), int(total[1]), int(total[2]), *quantization)
+    return (int(total[0]), int(total[1]), int(total[2]), quantization[0], quantization[1], quantization[2])
 
 
 def _finite_sum(model: NoiseModel, m_i: int, m_j: int, K_i: int, K_j: int) -> float:

@@ -11,10 +11,9 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from scipy import stats
 
 from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording, result_as_json
-from carousel_theory.fitting import COMPONENTS, FitResult, fit_noise_model
+from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_noise_model
 from carousel_theory.units import BIAS_INSTABILITY_FACTOR, bias_instability_from_allan_minimum
 
 #: Rows of the Table III-style summary: (key, label, unit, source of the value).
@@ -118,12 +117,15 @@ def fit_as_json(fit: FitResult) -> dict[str, Any]:
             "flicker_variance": model.flicker_variance,
             "flicker_d": model.flicker_d,
             "quantization": model.quantization,
+            "ar_variance": model.ar_variance,
+            "ar_coefficients": list(model.ar_coefficients),
         },
         "standard_errors": dict(fit.standard_errors),
         "field_units": {key: list(value) for key, value in fit.field_units().items()},
         "paper_units": {key: list(value) for key, value in fit.paper_units().items()},
         "chi_square": fit.chi_square,
         "degrees_of_freedom": fit.degrees_of_freedom,
+        "p_value": fit.p_value,
         "at_bound": list(fit.at_bound),
         "method": fit.method,
         "allan": result_as_json(fit.allan),
@@ -139,17 +141,14 @@ def _format(value: float, error: float) -> str:
 
 
 def _consistency(values: list[tuple[float, float]]) -> str:
-    """Weighted mean, χ² of the runs about it, and its p-value (are the runs one population?)."""
-    estimates = np.array([v for v, _ in values])
-    errors = np.array([e for _, e in values])
-    if len(values) < 2 or not np.all(np.isfinite(errors)) or np.any(errors <= 0):
+    """The run-to-run consistency test (:func:`carousel_theory.fitting.consistency_test`), formatted."""
+    test = consistency_test(values)
+    if test is None:
         return "—"
-    weights = 1.0 / errors**2
-    mean = float(np.sum(weights * estimates) / np.sum(weights))
-    chi_square = float(np.sum(((estimates - mean) / errors) ** 2))
-    p_value = float(stats.chi2.sf(chi_square, len(values) - 1))
-    spread = float(np.std(estimates, ddof=1))
-    return f"{mean:.3g} (spread {spread:.2g}; χ²={chi_square:.3g}/{len(values) - 1}, p={p_value:.2g})"
+    return (
+        f"{test.mean:.3g} (spread {test.spread:.2g}; χ²={test.chi_square:.3g}/{test.degrees_of_freedom}, "
+        f"p={test.p_value:.2g})"
+    )
 
 
 def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argparse.Namespace) -> str:
@@ -240,10 +239,9 @@ def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argpars
         misfits = []
         for a in axes:
             fit = fits[a]
-            dof = fit.degrees_of_freedom
-            p_value = float(stats.chi2.sf(fit.chi_square, dof)) if dof else 1.0
+            p_value = fit.p_value
             if p_value < 0.01:
-                factor = math.sqrt(fit.chi_square / dof)
+                factor = math.sqrt(fit.chi_square / fit.degrees_of_freedom)
                 misfits.append(f"{a} (p = {p_value:.2g}; scale its standard errors by about {factor:.2g})")
         if misfits:
             lines.append(
