@@ -232,6 +232,8 @@ def _fused_small_levels(centered: np.ndarray, small: np.ndarray) -> tuple[np.nda
         window = centered[first : first + _CHUNK + 2 * largest]
         for level, m in enumerate(int(value) for value in small):
             if level:
+                if len(window) <= m // 2:  # the record ends inside this chunk: no window of length m
+                    break
                 window = window[: len(window) - m // 2] + window[m // 2 :]
             valid = min(_CHUNK, length - 2 * m + 1 - first)
             if valid > 0:

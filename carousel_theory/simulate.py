@@ -27,6 +27,7 @@ import numpy as np
 from carousel_theory._validation import check_positive_integer, check_positive_real, check_real
 from carousel_theory.data import Recording, recording_from_arrays
 from carousel_theory.effects import CATALOGUE, check_effect_parameters
+from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel
 from carousel_theory.processes import sample_flicker, sample_rate_random_walk, sample_white
 
 __all__ = [
@@ -34,9 +35,42 @@ __all__ = [
     "Injection",
     "default_temperature_profile",
     "parse_injection",
+    "sample_noise",
     "simulate_recording",
     "write_recording",
 ]
+
+
+def sample_noise(model: NoiseModel, length: int, *, rng: np.random.Generator) -> np.ndarray:
+    """One axis of ``length`` samples of ``model``: b + white + RRW (eq. (2), r_0 = 0) + 1/f (eq. (3),
+    started at t = 1) + quantization (f_s (a_t − a_{t−1}), a white angle error of variance Q²) + the AR term
+    started in its stationary state (a burn-in until the slowest root's envelope is below
+    :data:`carousel_theory.noise_model.AR_TRUNCATION`)."""
+    from scipy.signal import lfilter
+
+    length = check_positive_integer("length", length, minimum=1)
+    if not isinstance(model, NoiseModel):
+        raise TypeError(f"model={model!r}: must be a NoiseModel")
+    if not isinstance(rng, np.random.Generator):
+        raise TypeError(f"rng={rng!r}: must be a numpy.random.Generator")
+    y = np.full(length, float(model.bias))
+    if model.white_variance:
+        y += sample_white(length, rng=rng, variance=float(model.white_variance))
+    if model.rrw_variance:
+        y += sample_rate_random_walk(length, rng=rng, variance=float(model.rrw_variance))
+    if model.flicker_variance:
+        flicker = sample_flicker(length, rng=rng, d=float(model.flicker_d))
+        y += np.sqrt(float(model.flicker_variance)) * flicker
+    if model.quantization:
+        angle = float(model.quantization) * rng.standard_normal(length + 1)
+        y += float(model.sample_rate) * np.diff(angle)
+    if model.ar_variance:
+        phi = np.asarray(model.ar_coefficients, dtype=np.float64)
+        rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -phi)))))) if len(phi) else 0.0
+        burn = int(np.log(AR_TRUNCATION) / np.log(rho)) + len(phi) if rho > 0 else 0
+        innovations = np.sqrt(float(model.ar_variance)) * rng.standard_normal(length + burn)
+        y += lfilter([1.0], np.concatenate(([1.0], -phi)), innovations)[burn:]
+    return y
 
 
 def _sawtooth(time: np.ndarray, amplitude: float = 1e-3, period: float = 60.0) -> np.ndarray:
