@@ -25,8 +25,9 @@ Exact closed form (white, rate random walk, quantization; overlapping estimator)
     n ≥ 2(m_i + m_j) it is A_ij + B_ij n (cached per (m_i, m_j), so a loop that refits pays once).
 
 Exact finite sums (1/f, AR, and the non-overlapping estimator)
-    c_ij(δ) is computed on a window of lags by one FFT correlation of W_ij with γ_z, O((m_i + m_j + T)
-    log) per pair, T the reach of γ_z: for AR, the lag beyond which the geometric envelope is below
+    c_ij(δ) is computed on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is
+    correlated with the triangle g_j once per τ_j (one FFT), and g_i = B_{m_i}⋆B_{m_i} is applied to
+    that as two moving sums. T: for AR, the lag beyond which the geometric envelope is below
     :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j).
     The 1/f tail beyond the window is bounded, not dropped silently: for k ≥ 1, γ_z(k) < 0 and
     |γ_z(k)| decreases, with |γ_z(k)| ≤ |γ_z(V)| ((V + 2 − d)/(k + 2 − d))^{3−2d} (from the ratio
@@ -193,19 +194,6 @@ def _triangle(m: int) -> np.ndarray:
     return np.minimum(np.arange(1, 2 * m), np.arange(2 * m - 1, 0, -1)).astype(np.float64)
 
 
-def _increment_covariance_at(model: NoiseModel, lags: np.ndarray, terms: tuple[str, ...]) -> np.ndarray:
-    """γ_z at the (possibly negative) integer ``lags`` for the listed terms of ``model``."""
-    reach = int(np.max(np.abs(lags))) + 1
-    gamma = np.zeros(reach)
-    variances = model.terms()
-    for term in terms:
-        if term in variances:
-            gamma += variances[term] * increment_autocovariance(
-                term, reach, model.flicker_d, model.ar_coefficients
-            )
-    return gamma[np.abs(lags)]
-
-
 def _lag_window(model: NoiseModel, m_i: int, m_j: int) -> int:
     """How far beyond the filters' support c_ij is summed (module text)."""
     terms = model.terms()
@@ -219,30 +207,62 @@ def _lag_window(model: NoiseModel, m_i: int, m_j: int) -> int:
     return reach
 
 
-def _cross_covariance(model: NoiseModel, m_i: int, m_j: int, deltas: np.ndarray) -> np.ndarray:
-    """c_ij(δ) at consecutive integer ``deltas`` by one FFT correlation of W_ij with γ_z."""
-    W = fftconvolve(_triangle(m_i), _triangle(m_j))  # W(u) at index u + 2m_i − 2
-    lags = np.arange(int(deltas[0]) - (2 * m_i - 2), int(deltas[-1]) + 2 * m_j - 1)
-    gamma = _increment_covariance_at(model, lags, tuple(model.terms()))
-    return fftconvolve(gamma, W[::-1], mode="valid")
-
-
-def _flicker_tail_bound(model: NoiseModel, m_i: int, m_j: int, inner: int, count: int) -> float:
-    """Bound on Σ N c² outside |δ| window: 2 K (m_i² m_j²)² Σ_{k≥V} γ_z(k)² (module text)."""
+def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, count: int) -> float:
+    """Bound on Σ N c² outside the δ window: 2 K (m_i² m_j²)² Σ_{k≥V} γ_z(k)² (module text)."""
+    model = memory.model
     if "flicker" not in model.terms():
         return 0.0
     d = float(model.flicker_d)
     V = max(1, inner)
-    gamma_V = abs(float(model.flicker_variance * increment_autocovariance("flicker", V + 1, d)[V]))
+    gamma_V = abs(float(model.flicker_variance * memory.flicker_gamma[V]))
     tail = gamma_V**2 * (1.0 + (V + 2.0 - d) / (5.0 - 4.0 * d))
     return 2.0 * count * (float(m_i) ** 2 * float(m_j) ** 2) ** 2 * tail
 
 
+class _LongMemory:
+    """c_ij(δ) = Σ_k g_i[k] A_j(δ − k) with A_j = γ_z correlated with g_j once per j (one FFT), and g_i,
+    the triangle B_{m_i}⋆B_{m_i}, applied as two moving sums (cumulative sums): no FFT per pair."""
+
+    def __init__(self, model: NoiseModel, sizes: np.ndarray, length: int) -> None:
+        self.model = model
+        self.length = int(length)
+        largest = int(np.max(sizes))
+        self.reach = {int(m): _lag_window(model, int(m), int(m)) for m in sizes}
+        span = 8 * largest + max(self.reach.values()) + 8
+        self.gamma = model.increment_autocovariance(span)
+        self.flicker_gamma = increment_autocovariance("flicker", span, model.flicker_d)
+        self.j: int | None = None
+        self.low = 0
+        self.correlated = np.zeros(0)
+
+    def _prepare(self, m_j: int) -> None:
+        """A_j(x) for x from low = −4m_j − reach_jj to 2m_j + reach_jj."""
+        if self.j == m_j:
+            return
+        reach = self.reach[m_j]
+        # No offset δ between two differences exceeds the record; A_j is needed down to δ − 2m_i + 2.
+        self.low = max(-4 * m_j - reach, -self.length - 2 * m_j)
+        high = min(2 * m_j + reach, self.length)
+        lags = np.abs(np.arange(self.low, high + 2 * m_j - 1))
+        self.correlated = fftconvolve(self.gamma[lags], _triangle(m_j), mode="valid")
+        self.j = m_j
+
+    def cross_covariance(self, m_i: int, m_j: int, first: int, last: int) -> np.ndarray:
+        """c_ij(δ) for δ = first … last (inside the window prepared for m_j)."""
+        self._prepare(m_j)
+        start = first - 2 * m_i + 2 - self.low  # A_j from δ − (2m_i − 2)
+        values = self.correlated[start : last - self.low + 1]
+        for _ in range(2):  # two moving sums of length m_i
+            cumulative = np.concatenate(([0.0], np.cumsum(values)))
+            values = cumulative[m_i:] - cumulative[:-m_i]
+        return values
+
+
 def _lag_sum(
-    model: NoiseModel, m_i: int, m_j: int, K_i: int, K_j: int, estimator: str
+    memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int, estimator: str
 ) -> tuple[float, float]:
     """(Σ N c², bound on the neglected tail) by the finite lag sum over a window of δ."""
-    reach = _lag_window(model, m_i, m_j)
+    reach = _lag_window(memory.model, m_i, m_j)
     spacing = 1 if estimator == "overlapping" else m_i
     low = max(-(K_i - 1) * spacing, -2 * m_j - reach)
     high = min((K_j - 1) * (1 if estimator == "overlapping" else m_j), 2 * m_i + reach)
@@ -257,12 +277,9 @@ def _lag_sum(
         last = np.minimum(K_j - 1, (K_i - 1 + t) // ratio)
         counts = last - first + 1
     counts = np.maximum(counts, 0).astype(np.float64)
-    if estimator == "overlapping":
-        c = _cross_covariance(model, m_i, m_j, deltas)
-    else:
-        dense = _cross_covariance(model, m_i, m_j, np.arange(deltas[0], deltas[-1] + 1))
-        c = dense[deltas - deltas[0]]
-    bound = _flicker_tail_bound(model, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
+    dense = memory.cross_covariance(m_i, m_j, int(deltas[0]), int(deltas[-1]))
+    c = dense if estimator == "overlapping" else dense[deltas - deltas[0]]
+    bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
     return float(np.dot(counts, c * c)), bound
 
 
@@ -294,15 +311,16 @@ def allan_estimate_covariance(
         )
     terms = _terms_count(sizes, int(length), estimator)
     long_terms = any(name in model.terms() for name in ("flicker", "ar"))
+    memory = _LongMemory(model, sizes, int(length)) if long_terms or estimator != "overlapping" else None
     count = len(sizes)
     covariance, bound = np.empty((count, count)), np.zeros((count, count))
-    for i in range(count):
-        for j in range(i, count):
+    for j in range(count):  # column by column: A_j is prepared once per j
+        for i in range(j + 1):
             m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
-            if estimator == "overlapping" and not long_terms:
+            if memory is None:
                 total, tail = _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
             else:
-                total, tail = _lag_sum(model, m_i, m_j, K_i, K_j, estimator)
+                total, tail = _lag_sum(memory, m_i, m_j, K_i, K_j, estimator)
             scale = 2.0 * float(m_i) ** 2 * float(m_j) ** 2 * K_i * K_j
             covariance[i, j] = covariance[j, i] = total / scale
             bound[i, j] = bound[j, i] = tail / scale
@@ -318,11 +336,12 @@ def allan_estimate_variance(
     sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
     terms = _terms_count(sizes, int(length), estimator)
     long_terms = any(name in model.terms() for name in ("flicker", "ar"))
+    memory = _LongMemory(model, sizes, int(length)) if long_terms or estimator != "overlapping" else None
     result = np.empty(len(sizes))
     for i, (m, K) in enumerate(zip(sizes.tolist(), terms.tolist(), strict=True)):
-        if estimator == "overlapping" and not long_terms:
+        if memory is None:
             total = _finite_sum(model, m, m, K, K)
         else:
-            total = _lag_sum(model, m, m, K, K, estimator)[0]
+            total = _lag_sum(memory, m, m, K, K, estimator)[0]
         result[i] = total / (2.0 * float(m) ** 4 * K * K)
     return result
