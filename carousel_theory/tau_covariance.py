@@ -230,7 +230,8 @@ class _LongMemory:
         self.reach = {int(m): _lag_window(model, int(m), int(m)) for m in sizes}
         span = 8 * largest + max(self.reach.values()) + 8
         self.gamma = model.increment_autocovariance(span)
-        self.flicker_gamma = increment_autocovariance("flicker", span, model.flicker_d)
+        flicker = "flicker" in model.terms()
+        self.flicker_gamma = increment_autocovariance("flicker", span if flicker else 1, model.flicker_d)
         self.j: int | None = None
         self.low = 0
         self.correlated = np.zeros(0)

@@ -14,6 +14,7 @@ import numpy as np
 
 from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording, result_as_json
 from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_noise_model
+from carousel_theory.progress import progress
 from carousel_theory.units import BIAS_INSTABILITY_FACTOR, bias_instability_from_allan_minimum
 
 #: Rows of the Table III-style summary: (key, label, unit, source of the value).
@@ -81,7 +82,7 @@ def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitR
     if args.tau_min is not None or args.tau_max is not None:
         tau_range = (args.tau_min or 1.0 / recording.sample_rate, args.tau_max or recording.duration)
     fits = {}
-    for name, rates in recording.rates.items():
+    for name, rates in progress(recording.rates.items(), len(recording.rates), f"fit {path.name}: axes"):
         fits[name] = fit_noise_model(
             rates,
             recording.sample_rate,
