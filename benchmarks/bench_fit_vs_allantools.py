@@ -74,7 +74,7 @@ def main() -> None:
         peer_time, _ = _timed(lambda y=y: allantools.oadev(y, rate=100.0, data_type="freq", taus="octave"))
         for text in args.models:
             components = tuple(text.split(","))
-            fit_time, fit = _timed(lambda c=components, y=y: fit_noise_model(y, 100.0, c))
+            fit_time, _ = _timed(lambda c=components, y=y: fit_noise_model(y, 100.0, c))
             print(f"{size:>10} {text:>22} {fit_time:>9.2f} {peer_time:>15.2f} {fit_time / peer_time:>15.2f}")
     _dense_check(args.dense_size, rng)
 

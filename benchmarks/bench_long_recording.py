@@ -66,7 +66,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--samples", type=int, default=43_200_000)
     parser.add_argument("--format", nargs="+", default=["npz"], choices=("npz", "csv"))
-    parser.add_argument("--keep", type=Path, help="write the recordings here instead of a temporary directory")
+    parser.add_argument(
+        "--keep", type=Path, help="write the recordings here instead of a temporary directory"
+    )
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as temporary:
         directory = args.keep or Path(temporary)
@@ -74,12 +76,14 @@ def main() -> None:
         start = time.perf_counter()
         paths = _write(directory, args.samples, args.format)
         print(f"wrote {args.samples} samples × 3 axes at {RATE:g} Hz in {time.perf_counter() - start:.1f} s")
-        print(f"{'format':>6} {'command':>8} {'exit':>5} {'wall (s)':>9} {'peak RSS (GB)':>14} {'file (GB)':>10}")
+        print(
+            f"{'format':>6} {'command':>8} {'exit':>5} {'wall (s)':>9} {'peak (GB)':>10} {'file (GB)':>10}"
+        )
         for kind, path in paths.items():
             for command in ("allan", "fit"):
                 code, wall, peak = _measure([sys.executable, "-m", "carousel_theory", command, str(path)])
                 size = path.stat().st_size / 1024**3
-                print(f"{kind:>6} {command:>8} {code:>5} {wall:>9.1f} {peak:>14.2f} {size:>10.2f}")
+                print(f"{kind:>6} {command:>8} {code:>5} {wall:>9.1f} {peak:>10.2f} {size:>10.2f}")
 
 
 if __name__ == "__main__":

@@ -83,7 +83,6 @@ def test_flicker_exact_null_unless_asked(capsys):
     assert status == 0 and json.loads(out)["exact"] == "13/16"  # (9/4 + 1)/4, by hand
 
 
-
 def test_exact_flag_prints_the_exact_value_to_fifty_digits(capsys):
     # 13/16 = 0.8125 is exact in binary, so use a value that is not: d = 1/3, N = 4, k = 2.
     arguments = ["flicker_average_var", "--set", "d=1/3", "--set", "N=4", "--set", "k=2", "--exact", "--json"]
@@ -94,6 +93,7 @@ def test_exact_flag_prints_the_exact_value_to_fifty_digits(capsys):
     with mpmath.workdps(70):
         expected = mpmath.nstr(mpmath.mpf(exact.p) / exact.q, 50, strip_zeros=False)
     assert result["value"] == expected  # every one of the 50 digits, not a float's binary expansion
+
 
 @pytest.mark.parametrize(
     ("argv", "message"),
