@@ -76,9 +76,7 @@ def main() -> None:
         start = time.perf_counter()
         paths = _write(directory, args.samples, args.format)
         print(f"wrote {args.samples} samples × 3 axes at {RATE:g} Hz in {time.perf_counter() - start:.1f} s")
-        print(
-            f"{'format':>6} {'command':>8} {'exit':>5} {'wall (s)':>9} {'peak (GB)':>10} {'file (GB)':>10}"
-        )
+        print(f"{'format':>6} {'command':>8} {'exit':>5} {'wall (s)':>9} {'peak (GB)':>10} {'file (GB)':>10}")
         for kind, path in paths.items():
             for command in ("allan", "fit"):
                 code, wall, peak = _measure([sys.executable, "-m", "carousel_theory", command, str(path)])
