@@ -436,6 +436,25 @@ def _cross_correlation(
     return wrapped[lags % size]
 
 
+def _offsets_and_pairs(
+    estimator: str, sizes: np.ndarray, m_i: int, m_j: int, K_i: int, K_j: int, low: int, high: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets δ between the starts of two differences and the number of pairs at each (dense reference)."""
+    if estimator == "overlapping":
+        delta = np.arange(low, high + 1)
+        return delta, np.minimum(K_j, K_i - delta) - np.maximum(0, -delta)
+    if m_j % m_i:
+        raise ValueError(
+            f"tau_samples={sizes!r}: for the non-overlapping estimator each cluster size must "
+            "divide the larger ones (use octave τ)"
+        )
+    ratio = m_j // m_i
+    k = np.arange(low // m_i - 1, -(-high // m_i) + 2)
+    r_low = np.maximum(0, -(k // ratio))
+    r_high = np.minimum(K_j - 1, (K_i - 1 - k) // ratio)
+    return k * m_i, r_high - r_low + 1
+
+
 def allan_covariance(
     model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping"
 ) -> np.ndarray:
@@ -472,21 +491,7 @@ def allan_covariance(
             m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
             low = min(-(len(taps[i][c][0]) - 1) - taps[i][c][1] + taps[j][c][1] for c in parts)
             high = max(len(taps[j][c][0]) - 1 - taps[i][c][1] + taps[j][c][1] for c in parts)
-            if estimator == "overlapping":
-                delta = np.arange(low, high + 1)
-                pairs = np.minimum(K_j, K_i - delta) - np.maximum(0, -delta)
-            else:
-                if m_j % m_i:
-                    raise ValueError(
-                        f"tau_samples={sizes!r}: for the non-overlapping estimator each cluster size must "
-                        "divide the larger ones (use octave τ)"
-                    )
-                ratio = m_j // m_i
-                k = np.arange(low // m_i - 1, -(-high // m_i) + 2)
-                delta = k * m_i
-                r_low = np.maximum(0, -(k // ratio))
-                r_high = np.minimum(K_j - 1, (K_i - 1 - k) // ratio)
-                pairs = r_high - r_low + 1
+            delta, pairs = _offsets_and_pairs(estimator, sizes, m_i, m_j, K_i, K_j, low, high)
             pairs = np.maximum(pairs, 0)
             covariance = np.zeros(len(delta))
             for name, variance in parts.items():
@@ -543,6 +548,17 @@ def _has_flicker(noise: Any) -> bool:
     return float(noise.flicker_variance) > 0
 
 
+def _check_options(sample_rate: Any, estimator: Any, noise: Any, confidence: Any) -> tuple[float, str, float]:
+    sample_rate = float(check_positive_real("sample_rate", sample_rate))
+    estimator = _check_estimator(estimator)
+    confidence = float(check_positive_real("confidence", confidence))
+    if not confidence < 1:
+        raise ValueError(f"confidence={confidence!r}: must be in (0, 1)")
+    if isinstance(noise, str) and noise not in NOISE_TYPES:
+        raise ValueError(f"noise={noise!r}: must be one of {NOISE_TYPES} or a NoiseModel")
+    return sample_rate, estimator, confidence
+
+
 def allan_variance(
     y: Any,
     sample_rate: float,
@@ -571,13 +587,7 @@ def allan_variance(
     confidence : float
         Level of the intervals, in (0, 1).
     """
-    sample_rate = float(check_positive_real("sample_rate", sample_rate))
-    estimator = _check_estimator(estimator)
-    confidence = float(check_positive_real("confidence", confidence))
-    if not confidence < 1:
-        raise ValueError(f"confidence={confidence!r}: must be in (0, 1)")
-    if isinstance(noise, str) and noise not in NOISE_TYPES:
-        raise ValueError(f"noise={noise!r}: must be one of {NOISE_TYPES} or a NoiseModel")
+    sample_rate, estimator, confidence = _check_options(sample_rate, estimator, noise, confidence)
     samples = check_finite_array("y", y, min_length=3)
     length = len(samples)
     sizes, octave = _cluster_sizes(taus, sample_rate, length)

@@ -193,9 +193,7 @@ def recording_from_arrays(
         raise ValueError(f"irregular={irregular!r}: must be 'refuse' or 'keep'")
     if not isinstance(source, str):
         raise TypeError(f"source={source!r}: must be a string")
-    if hasattr(rates, "columns") and hasattr(
-        rates, "to_numpy"
-    ):  # a pandas DataFrame, without importing pandas
+    if hasattr(rates, "columns") and hasattr(rates, "to_numpy"):  # a DataFrame, without importing pandas
         rates = {str(name): rates[name].to_numpy() for name in rates.columns}
     if not isinstance(rates, Mapping):
         raise TypeError(
@@ -205,34 +203,9 @@ def recording_from_arrays(
         raise ValueError(f"{source}: no gyro columns (rates is empty)")
     if sample_rate is not None:
         sample_rate = float(check_positive_real("sample_rate", sample_rate))
-    length: int | None = None
-    converted: dict[str, np.ndarray] = {}
-    for name, values in rates.items():
-        if not isinstance(name, str):
-            raise TypeError(f"rates: column name {name!r} must be a string")
-        array = _check_column(name, values, source, length)
-        length = len(array)
-        # A read-only array (a memory-mapped NPZ member) in rad/s is kept as it is: nothing can change it.
-        keep = units == "rad/s" and not array.flags.writeable
-        converted[name] = array if keep else rate_to_rad_per_s(array, units)
-    assert length is not None
-    if length < 2:
-        raise ValueError(f"{source}: needs at least 2 samples, got {length}")
-    if time is None:
-        if sample_rate is None:
-            raise ValueError(f"{source}: no time column and no sample_rate; give one of them")
-        time_array = np.arange(length, dtype=np.float64) / sample_rate
-        rate, uniform = sample_rate, True
-        notes: tuple[str, ...] = ()
-    else:
-        time_array = _check_column("time", time, source, length)
-        rate, uniform, notes = _check_timing(time_array, source, irregular)
-        if sample_rate is not None and uniform and abs(rate - sample_rate) > 1e-6 * sample_rate:
-            raise ValueError(
-                f"{source}: sample_rate={sample_rate!r} disagrees with the time column ({rate:.9g} Hz)"
-            )
-        if sample_rate is not None and uniform:
-            rate = sample_rate
+    converted = _converted_rates(rates, units, source)
+    length = len(next(iter(converted.values())))
+    time_array, rate, uniform, notes = _time_axis(time, sample_rate, length, source, irregular)
     temperature_array = (
         None if temperature is None else _check_column("temperature", temperature, source, length)
     )
@@ -247,6 +220,42 @@ def recording_from_arrays(
         uniform=uniform,
         notes=notes,
     )
+
+
+def _converted_rates(rates: Mapping[str, Any], units: str, source: str) -> dict[str, np.ndarray]:
+    """Each gyro column checked and in rad/s."""
+    length: int | None = None
+    converted: dict[str, np.ndarray] = {}
+    for name, values in rates.items():
+        if not isinstance(name, str):
+            raise TypeError(f"rates: column name {name!r} must be a string")
+        array = _check_column(name, values, source, length)
+        length = len(array)
+        # A read-only array (a memory-mapped NPZ member) in rad/s is kept as it is: nothing can change it.
+        keep = units == "rad/s" and not array.flags.writeable
+        converted[name] = array if keep else rate_to_rad_per_s(array, units)
+    if length is None or length < 2:
+        raise ValueError(f"{source}: needs at least 2 samples, got {length}")
+    return converted
+
+
+def _time_axis(
+    time: Any, sample_rate: float | None, length: int, source: str, irregular: str
+) -> tuple[np.ndarray, float, bool, tuple[str, ...]]:
+    """(time, sample rate, uniform, notes) from a time column or from the sample rate."""
+    if time is None:
+        if sample_rate is None:
+            raise ValueError(f"{source}: no time column and no sample_rate; give one of them")
+        return np.arange(length, dtype=np.float64) / sample_rate, sample_rate, True, ()
+    time_array = _check_column("time", time, source, length)
+    rate, uniform, notes = _check_timing(time_array, source, irregular)
+    if sample_rate is not None and uniform and abs(rate - sample_rate) > 1e-6 * sample_rate:
+        raise ValueError(
+            f"{source}: sample_rate={sample_rate!r} disagrees with the time column ({rate:.9g} Hz)"
+        )
+    if sample_rate is not None and uniform:
+        rate = sample_rate
+    return time_array, rate, uniform, notes
 
 
 def _is_rate_name(name: str) -> bool:
@@ -393,6 +402,39 @@ def _read_csv_numpy(path: Path, header: list[str], delimiter: str) -> dict[str, 
     return {name: table[:, i] for i, name in enumerate(header)}
 
 
+def _column_roles(
+    table: Mapping[str, Any], columns: Mapping[str, str] | None, path: Path
+) -> tuple[str | None, str | None, str | None, dict[str, str]]:
+    """(time, temperature, angle, gyro columns ours → theirs) from ``columns`` or the default names."""
+    names = list(table)
+    if columns is None:
+        rate_names = {name: name for name in names if _is_rate_name(name) and np.ndim(table[name]) == 1}
+        if not rate_names:
+            raise ValueError(
+                f"{path}: no gyro columns found among {names}; name them with columns={{'wx': ...}}"
+            )
+        return (
+            _pick(names, _TIME_NAMES),
+            _pick(names, _TEMPERATURE_NAMES),
+            _pick(names, _ANGLE_NAMES),
+            rate_names,
+        )
+    if not isinstance(columns, Mapping):
+        raise TypeError(f"columns={columns!r}: must be a mapping of our name to the file's column name")
+    missing = [file_name for file_name in columns.values() if file_name not in table]
+    if missing:
+        raise ValueError(f"{path}: columns {missing} not found; the file has {names}")
+    time_name = columns.get("time")
+    if time_name is None and "time" not in columns:
+        time_name = _pick(names, _TIME_NAMES)
+    rate_names = {
+        ours: theirs for ours, theirs in columns.items() if ours not in ("time", "temperature", "angle")
+    }
+    if not rate_names:
+        raise ValueError(f"{path}: no gyro columns found among {names}; name them with columns={{'wx': ...}}")
+    return time_name, columns.get("temperature"), columns.get("angle"), rate_names
+
+
 def _looks_numeric(text: str) -> bool:
     try:
         float(text)
@@ -443,28 +485,7 @@ def load_recording(
         table = _read_csv(path)
     else:
         raise ValueError(f"{path}: unknown extension {path.suffix!r}; must be .csv or .npz")
-    names = list(table)
-    if columns is not None:
-        if not isinstance(columns, Mapping):
-            raise TypeError(f"columns={columns!r}: must be a mapping of our name to the file's column name")
-        missing = [file_name for file_name in columns.values() if file_name not in table]
-        if missing:
-            raise ValueError(f"{path}: columns {missing} not found; the file has {names}")
-        time_name = columns.get("time")
-        temperature_name = columns.get("temperature")
-        angle_name = columns.get("angle")
-        rate_names = {
-            ours: theirs for ours, theirs in columns.items() if ours not in ("time", "temperature", "angle")
-        }
-        if time_name is None and "time" not in columns:
-            time_name = _pick(names, _TIME_NAMES)
-    else:
-        time_name = _pick(names, _TIME_NAMES)
-        temperature_name = _pick(names, _TEMPERATURE_NAMES)
-        angle_name = _pick(names, _ANGLE_NAMES)
-        rate_names = {name: name for name in names if _is_rate_name(name) and np.ndim(table[name]) == 1}
-    if not rate_names:
-        raise ValueError(f"{path}: no gyro columns found among {names}; name them with columns={{'wx': ...}}")
+    time_name, temperature_name, angle_name, rate_names = _column_roles(table, columns, path)
     if sample_rate is None and "fs" in table and np.size(table["fs"]) == 1:
         sample_rate = float(np.asarray(table["fs"]).reshape(()))
         if not (math.isfinite(sample_rate) and sample_rate > 0):
