@@ -12,9 +12,19 @@ Confidence intervals
     the differences at a lag of k samples, its mean is K·c(0) and its variance 2 Σ_{s,r} c(s−r)², so the
     equivalent degrees of freedom (Satterthwaite; Greenhall and Riley's EDF) are
     ν = K² c(0)² / (K c(0)² + 2 Σ_{l≥1} (K−l) c(l·p)²), p the stride (m or 1).
-    Here c(k) is computed exactly from the noise model (white, rate random walk, quantization: finite
-    filters; 1/f: the fractional-integration filter truncated at the record length). The interval is
+    For a named noise type c(k) comes from that process's exact filter (1/f: the fractional-integration
+    filter truncated at the record length); for a :class:`carousel_theory.noise_model.NoiseModel` the
+    variance of each estimate comes from :mod:`carousel_theory.tau_covariance` (closed form for white,
+    rate random walk and quantization, finite lag sums for 1/f and AR) and ν = 2σ_A⁴/Var σ̂². The
+    interval is
     ν σ̂²/χ²_ν((1+level)/2) … ν σ̂²/χ²_ν((1−level)/2) (scipy.stats.chi2).
+
+Speed
+    Octave overlapping sums: the window sums at m = 1, 2, 4, … ≤ 2048 are doubled level by level inside
+    chunks of 16384 starts that stay in cache (one read of the record for all those levels); larger m
+    double whole arrays in place. Squares are summed without BLAS (a threaded ddot costs more in
+    synchronisation than it saves). The arithmetic is the same pairwise doubling as before, so the values
+    equal allantools' to ~1e-12.
 
 Model Allan variance
     The expected value of the estimator for each discrete process of TIM 2014 §II, exactly (not the
