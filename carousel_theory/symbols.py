@@ -16,6 +16,7 @@ __all__ = [
     "b",
     "cluster_size",
     "d",
+    "difference_count",
     "h",
     "i",
     "j",
@@ -77,3 +78,5 @@ white_sample_variance = sp.Symbol("sigma_WN^2", positive=True)
 rrw_increment_variance = sp.Symbol("sigma_q^2", positive=True)
 quantization_step = sp.Symbol("Q", positive=True)
 sample_interval = sp.Symbol("Delta_t", positive=True)
+#: Number K of squared differences an Allan-variance estimate averages (n − 2m + 1 when overlapping).
+difference_count = sp.Symbol("K", integer=True, positive=True)

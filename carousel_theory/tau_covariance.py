@@ -48,16 +48,31 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import sympy as sp
 from scipy.signal import fftconvolve
 
+from carousel_theory import symbols
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
 
-__all__ = ["FLICKER_REACH", "TauCovariance", "allan_estimate_covariance", "allan_estimate_variance"]
+__all__ = [
+    "FLICKER_REACH",
+    "WHITE_OVERLAPPING_ESTIMATE_VARIANCE",
+    "TauCovariance",
+    "allan_estimate_covariance",
+    "allan_estimate_variance",
+]
 
 #: The 1/f cross-covariance is summed over this many (m_i + m_j) lags beyond the filters' support; the
 #: rest is bounded (module text).
 FLICKER_REACH = 4
 _FINITE = ("white", "rrw", "quantization")
+
+_m, _K = symbols.cluster_size, symbols.difference_count
+#: Var σ̂²(m) of the overlapping estimator for white noise of variance σ_WN², K = n − 2m + 1 ≥ 2m
+#: differences (derived by summation in ``derivations/allan_variance_models.md`` §6).
+WHITE_OVERLAPPING_ESTIMATE_VARIANCE: sp.Expr = (
+    symbols.white_sample_variance**2 * (4 * _K * _m**2 + 5 * _K - 2 * _m**3 - _m) / (3 * _K**2 * _m**3)
+)
 _WEIGHTS = (1, -2, 1)
 
 

@@ -196,3 +196,18 @@ def test_bad_calls():
         allan_estimate_covariance(NoiseModel(sample_rate=1.0), [1, 2], 100)
     with pytest.raises(ValueError, match="must divide"):
         allan_estimate_covariance(MODELS["white"], [2, 3], 100, estimator="non-overlapping")
+
+
+def test_white_overlapping_closed_form_equals_the_engine():
+    import sympy as sp
+
+    from carousel_theory import symbols
+    from carousel_theory.tau_covariance import WHITE_OVERLAPPING_ESTIMATE_VARIANCE
+
+    for m, length in ((1, 4), (3, 11), (7, 40), (64, 1000), (1000, 10**7)):
+        K = length - 2 * m + 1
+        exact = WHITE_OVERLAPPING_ESTIMATE_VARIANCE.subs(
+            {symbols.white_sample_variance: 1, symbols.cluster_size: m, symbols.difference_count: K}
+        )
+        gram = _finite_gram(m, m, K, K)[0]
+        assert sp.Rational(2 * gram, 4 * m**4 * K**2) == exact

@@ -223,6 +223,7 @@ def _section_tau_covariance() -> list[str]:
     )
     pair_sum = sp.expand(pair_sum)
     variance = sp.factor(2 * pair_sum / (4 * _m**4 * _K**2))
+    assert sp.simplify(variance * _white**2 - tau_covariance.WHITE_OVERLAPPING_ESTIMATE_VARIANCE) == 0
     rows = []
     for m, length in ((1, 5), (2, 9), (3, 14), (5, 40), (8, 60)):
         K = length - 2 * m + 1
@@ -252,7 +253,8 @@ def _section_tau_covariance() -> list[str]:
         "",
         _math(sp.Eq(sp.Symbol("Var") * sp.Symbol("sigma_A^2"), variance * _white**2)),
         "",
-        "a polynomial in $m$ and $K$: its cost does not depend on the record length. For any pair of τ "
+        "(`tau_covariance.WHITE_OVERLAPPING_ESTIMATE_VARIANCE`), a polynomial in $m$ and $K$: its cost "
+        "does not depend on the record length. For any pair of τ "
         "and any mix of white noise, rate random walk and quantization, "
         "`carousel_theory.tau_covariance` writes $c_{ij}$ as a sum of nine ramps of degree 1 (white), 3 "
         "(rate random walk) or spikes (quantization), from the generating function "
