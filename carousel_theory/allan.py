@@ -264,7 +264,7 @@ def _overlapping_octave_sums(centered: np.ndarray, sizes: np.ndarray) -> np.ndar
     result[: len(small)] = totals
     if len(small) == len(sizes):
         return result
-    spare = np.empty_like(window)
+    spare = centered[: len(window)]  # ``centered`` (our own array) is read no more: reuse its memory
     buffer = np.empty(min(_CHUNK, len(window)))
     count = len(window)  # number of windows of the current length
     for level in range(len(small), len(sizes)):

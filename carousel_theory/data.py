@@ -364,6 +364,7 @@ def _read_csv(path: Path) -> dict[str, np.ndarray]:
             read_options=arrow_csv.ReadOptions(skip_rows=1, column_names=header, block_size=1 << 25),
             parse_options=arrow_csv.ParseOptions(delimiter=delimiter),
             convert_options=arrow_csv.ConvertOptions(column_types=dict.fromkeys(header, arrow.float64())),
+            memory_pool=arrow.system_memory_pool(),  # freed blocks go back to the system at once
         )
         for batch in reader:  # batch by batch: the text is never held whole, and Arrow's buffers are freed
             for index, name in enumerate(header):
