@@ -9,7 +9,7 @@ need a uniform sample rate (the Allan variance) refuse it. Files are only ever o
 
 Long recordings (12 h at 1 kHz is 4.3·10⁷ rows)
     CSV is parsed by ``pyarrow.csv`` when pyarrow is installed (the ``data`` extra; the core needs only
-    NumPy): its streaming reader parses blocks of 32 MB on all cores straight into float64 columns,
+    NumPy): its streaming reader parses blocks of 4 MB on all cores (larger blocks in flight cost memory) straight into float64 columns,
     without holding the text in memory, about ten times faster than ``numpy.loadtxt``; the columns are
     joined one at a time, so the peak is about one extra column; pandas' C engine is as fast on one
     core but names neither the row nor the column of a bad value. Without pyarrow, ``numpy.loadtxt`` is
@@ -361,7 +361,7 @@ def _read_csv(path: Path) -> dict[str, np.ndarray]:
     try:
         reader = arrow_csv.open_csv(
             path,
-            read_options=arrow_csv.ReadOptions(skip_rows=1, column_names=header, block_size=1 << 25),
+            read_options=arrow_csv.ReadOptions(skip_rows=1, column_names=header, block_size=1 << 22),
             parse_options=arrow_csv.ParseOptions(delimiter=delimiter),
             convert_options=arrow_csv.ConvertOptions(column_types=dict.fromkeys(header, arrow.float64())),
             memory_pool=arrow.system_memory_pool(),  # freed blocks go back to the system at once
