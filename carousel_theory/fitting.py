@@ -16,7 +16,10 @@ profiled and enters J through ∂(Aθ)/∂d. A parameter at zero is reported in 
 AR short noise: the coefficients are estimated before the GLS by Yule–Walker (Levinson–Durbin) on the
 record with its slow part removed by a centred moving average of 10 s (at least 1001 samples); the
 order is the largest p ≤ ``ar_order`` whose partial autocorrelation exceeds 4/√n. Only the innovation
-variance is fitted by GLS. Give ``ar_coefficients`` to fix them.
+variance is fitted by GLS. Give ``ar_coefficients`` to fix them. Yule–Walker sees the whole short noise:
+with "ar" the short noise is meant to be the AR process alone (as in the closed loop, where it replaces
+white noise); "white" and "ar" together with estimated coefficients describe white + AR by an AR of
+higher order and the two columns are nearly collinear, so give the coefficients in that case.
 
 Typed API (for ``fit`` and for the closed loop)
     :func:`observe_allan` → :class:`ObservedAllan` (compute once per record, reuse for every fit);
