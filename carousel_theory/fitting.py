@@ -1,25 +1,34 @@
-"""Noise-model identification from a gyro recording, with standard errors.
+"""Noise-model identification from a gyro recording, with standard errors: one fitter for ``fit`` and the
+closed loop.
 
-Method: generalized least squares on the overlapping Allan variance at octave τ (a GMWM-like
-estimator: the Haar wavelet variance is half the overlapping Allan variance).
-The model Allan variance is linear in the noise variances for a fixed 1/f order d,
-σ_A²(m) = σ_WN²·a_WN(m) + σ_q²·a_RRW(m) + Q²·a_Q(m) + σ_w²·a_f(m; d), with the exact discrete curves of
-:mod:`carousel_theory.allan`. The estimate minimises (â − Aθ)ᵀ C⁻¹ (â − Aθ), where C is the covariance of
-the Allan variance estimates *across* τ, computed exactly for Gaussian noise from the fitted model
-(Cov(Σd², Σd'²) = 2 ΣΣ cov(d, d')², the same filters as the confidence intervals), iterated from an
-ordinary fit. With a model-based C the weights do not depend on the noise in each point, which avoids
-the downward bias of weighting with the observed Allan variance. Standard errors are the square roots
-of the diagonal of (JᵀC⁻¹J)⁻¹ with J the Jacobian of the model curve; the order d, when fitted, is
-profiled (the GLS objective is minimised over d) and enters J through ∂(Aθ)/∂d, so the variances'
-errors include the uncertainty of d. A bound (a variance at zero) is reported rather than hidden.
-On simulated records (tests/test_fitting.py) the estimates are unbiased and the mean squared standard
-error matches the Monte Carlo variance; a variance identified by few long-τ points (rate random walk) is
-skewed, so :meth:`FitResult.interval` gives χ² intervals with ν = 2θ̂²/SE² rather than θ̂ ± 1.96 SE.
+Method: generalized least squares on the Allan variance at octave τ (a GMWM-like estimator: the Haar
+wavelet variance is half the overlapping Allan variance). For fixed 1/f order d and fixed AR
+coefficients the model Allan variance is linear in the driving variances,
+σ_A²(m) = σ_WN²·a_WN(m) + σ_q²·a_RRW(m) + Q²·a_Q(m) + σ_w²·a_f(m; d) + σ_AR²·a_AR(m; φ), with the exact
+stationary curves of :mod:`carousel_theory.noise_model`. The estimate minimises
+(â − Aθ)ᵀ C⁻¹ (â − Aθ) under θ ≥ 0, where C is the covariance of the estimates across τ computed from the
+current model by :mod:`carousel_theory.tau_covariance` (exact and independent of the record length for
+white, RRW and quantization; finite lag sums for 1/f and AR), iterated from a diagonal start. With a
+model-based C the weights do not depend on the noise in each point, which avoids the downward bias of
+weighting with the observed Allan variance. Standard errors: the diagonal of (JᵀC⁻¹J)⁻¹; a fitted d is
+profiled and enters J through ∂(Aθ)/∂d. A parameter at zero is reported in ``at_bound``.
 
-Why this and not a likelihood: the exact Gaussian likelihood of white + rate random walk + 1/f noise
-is cheap only under a stationary spectral (Whittle) approximation, and real recordings are not white at
-the sample rate (internal filters, spectral lines); a fit on the Allan variance lets the user choose the
-τ range that the model should explain and reports the same quantities as the field's Allan plot.
+AR short noise: the coefficients are estimated before the GLS by Yule–Walker (Levinson–Durbin) on the
+record with its slow part removed by a centred moving average of 10 s (at least 1001 samples); the
+order is the largest p ≤ ``ar_order`` whose partial autocorrelation exceeds 4/√n. Only the innovation
+variance is fitted by GLS. Give ``ar_coefficients`` to fix them. Yule–Walker sees the whole short noise:
+with "ar" the short noise is meant to be the AR process alone (as in the closed loop, where it replaces
+white noise); "white" and "ar" together with estimated coefficients describe white + AR by an AR of
+higher order and the two columns are nearly collinear, so give the coefficients in that case.
+
+Typed API (for ``fit`` and for the closed loop)
+    :func:`observe_allan` → :class:`ObservedAllan` (compute once per record, reuse for every fit);
+    :class:`FitOptions` (components, d fixed or fitted, AR order or coefficients, τ range, minimum
+    clusters, estimator, iterations); :func:`fit_observed` and :func:`fit_noise_model` → :class:`FitResult`
+    (model, standard errors, χ², its p-value, per-τ model curve, degrees of freedom of each τ);
+    :func:`nested_test` → :class:`NestedTest` (χ² difference of a fit with and without a term under the
+    fuller model's covariance, and its p-value); :func:`consistency_test` → :class:`ConsistencyTest`
+    (are estimates from several runs one population?).
 
 Units: the model is stored in per-sample discrete terms (TIM 2014 §II) with its sample rate; see
 :mod:`carousel_theory.units` for the conversions (0.664 factor, continuous vs discrete densities).
@@ -28,120 +37,49 @@ Units: the model is stored in per-sample discrete terms (TIM 2014 §II) with its
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
+from scipy import stats
+from scipy.linalg import solve_toeplitz
+from scipy.optimize import minimize_scalar, nnls
 
 from carousel_theory import units
-from carousel_theory._validation import check_fractional_order, check_positive_real, check_real
+from carousel_theory._validation import (
+    check_finite_array,
+    check_fractional_order,
+    check_positive_integer,
+    check_positive_real,
+)
+from carousel_theory.allan import AllanResult, allan_variance, with_model_intervals
+from carousel_theory.noise_model import NoiseModel, term_allan_variance
+from carousel_theory.tau_covariance import allan_estimate_covariance
 
-__all__ = ["COMPONENTS", "FitResult", "NoiseModel", "fit_noise_model"]
+__all__ = [
+    "COMPONENTS",
+    "ConsistencyTest",
+    "FitOptions",
+    "FitResult",
+    "NestedTest",
+    "NoiseModel",
+    "ObservedAllan",
+    "consistency_test",
+    "fit_noise_model",
+    "fit_observed",
+    "nested_test",
+    "observe_allan",
+    "yule_walker",
+]
 
-
-@dataclass(frozen=True)
-class NoiseModel:
-    """A gyro noise model in the per-sample discrete terms of TIM 2014 §II.
-
-    Attributes
-    ----------
-    sample_rate : float
-        Samples per second f_s (Δt = 1/f_s).
-    bias : float
-        Constant bias b (rad/s), eq. (1).
-    white_variance : float
-        Per-sample white-noise variance σ_WN² ((rad/s)²).
-    rrw_variance : float
-        Per-sample increment variance σ_q² of the rate random walk, eq. (2) ((rad/s)²).
-    flicker_variance : float
-        Driving variance σ_w² of the fractionally integrated 1/f noise, eq. (3) ((rad/s)²).
-    flicker_d : float
-        Order 0 < d < 1 of the fractional integration (ignored when ``flicker_variance`` is 0).
-    quantization : float
-        Angle quantization Q (rad): Allan variance 3Q²/τ².
-    """
-
-    sample_rate: float
-    bias: float = 0.0
-    white_variance: float = 0.0
-    rrw_variance: float = 0.0
-    flicker_variance: float = 0.0
-    flicker_d: float = 0.5
-    quantization: float = 0.0
-    extra: dict[Any, Any] = field(default_factory=dict, compare=False, repr=False)
-
-    def __post_init__(self) -> None:
-        check_positive_real("sample_rate", self.sample_rate)
-        check_real("bias", self.bias)
-        for name in ("white_variance", "rrw_variance", "flicker_variance", "quantization"):
-            check_positive_real(name, getattr(self, name), allow_zero=True)
-        check_fractional_order("flicker_d", self.flicker_d)
-
-    # --- the field's units (IEEE Std 952) -------------------------------------------------------
-    def angle_random_walk(self) -> float:
-        """N = √(σ_WN²/f_s) in rad/√s."""
-        return units.angle_random_walk_from_white_variance(self.white_variance, self.sample_rate)
-
-    def angle_random_walk_deg_per_sqrt_hour(self) -> float:
-        """Angle random walk in °/√h."""
-        return units.to_deg_per_sqrt_hour(self.angle_random_walk())
-
-    def rate_random_walk(self) -> float:
-        """K = √(σ_q² f_s) in rad/s/√s."""
-        return units.rate_random_walk_from_increment_variance(self.rrw_variance, self.sample_rate)
-
-    def rate_random_walk_deg_per_hour_per_sqrt_hour(self) -> float:
-        """Rate random walk in °/h/√h."""
-        return units.to_deg_per_hour_per_sqrt_hour(self.rate_random_walk())
-
-    def bias_deg_per_hour(self) -> float:
-        """The bias in °/h."""
-        return units.rad_per_s_to_deg_per_h(self.bias)
-
-    # --- the paper's units (TIM 2014 Table III) -------------------------------------------------
-    def white_variance_at_one_second(self) -> float:
-        """σ_WN² (τ = 1 s) of TIM 2014 Table III: the variance of a 1-s average, σ_WN²/f_s ((rad/s)²)."""
-        return self.white_variance / self.sample_rate
-
-    def rrw_variance_per_second(self) -> float:
-        """σ_q² of TIM 2014 Table III in (rad/s)²/s: the increment variance per second, σ_q² f_s."""
-        return self.rrw_variance * self.sample_rate
-
-    def minimum_allan_deviation(self, length: int) -> tuple[float, float]:
-        """(min σ_A, τ at the minimum) of this model over octave τ of a record of ``length`` samples."""
-        from carousel_theory.allan import model_allan_variance, octave_cluster_sizes
-
-        key = (
-            "minimum",
-            length,
-            self.white_variance,
-            self.rrw_variance,
-            self.flicker_variance,
-            self.flicker_d,
-            self.quantization,
-            self.sample_rate,
-        )
-        if key not in self.extra:  # the 1/f curve costs O(n) per τ, and reports ask for it often
-            sizes = octave_cluster_sizes(length)
-            # Between octaves: the minimum of a smooth curve is found on a log grid of 8 points per octave.
-            grid = np.unique(np.rint(np.geomspace(1, sizes[-1], 8 * len(sizes))).astype(np.int64))
-            values = model_allan_variance(self, grid, length=length)
-            best = int(np.argmin(values))
-            self.extra[key] = (math.sqrt(float(values[best])), float(grid[best] / self.sample_rate))
-        return self.extra[key]
-
-    def bias_instability(self, length: int) -> float:
-        """Bias instability B = min σ_A / 0.664 (rad/s) of the model's Allan curve (IEEE Std 952)."""
-        return units.bias_instability_from_allan_minimum(self.minimum_allan_deviation(length)[0])
-
-
-COMPONENTS = ("white", "rrw", "flicker", "quantization")
+COMPONENTS = ("white", "rrw", "flicker", "quantization", "ar")
 #: Parameter name of each component in :class:`NoiseModel`.
 _PARAMETER = {
     "white": "white_variance",
     "rrw": "rrw_variance",
     "flicker": "flicker_variance",
     "quantization": "quantization_squared",
+    "ar": "ar_variance",
 }
 
 
@@ -177,6 +115,8 @@ class FitResult:
         Parameters held at zero by the non-negativity constraint (their standard errors are not valid).
     length : int
         Number of samples of the record.
+    tau_covariance : ndarray
+        The covariance C of the used Allan variance estimates across τ under which the fit was made.
     """
 
     model: NoiseModel
@@ -191,6 +131,19 @@ class FitResult:
     degrees_of_freedom: int
     at_bound: tuple[str, ...]
     length: int
+    tau_covariance: np.ndarray | None = None
+
+    @property
+    def p_value(self) -> float:
+        """P(χ²_ν ≥ ``chi_square``), ν = ``degrees_of_freedom``: the model's misfit test (1 when ν = 0)."""
+        if self.degrees_of_freedom <= 0:
+            return 1.0
+        return float(stats.chi2.sf(self.chi_square, self.degrees_of_freedom))
+
+    @property
+    def edf(self) -> np.ndarray:
+        """Equivalent degrees of freedom of each τ's estimate under the fitted model."""
+        return np.asarray(self.allan.edf)
 
     def interval(self, name: str, level: float = 0.95) -> tuple[float, float]:
         """Confidence interval of a fitted parameter at ``level``.
@@ -199,8 +152,6 @@ class FitResult:
         variance's own: with ν = 2θ̂²/s², ν θ̂/χ²_ν((1+level)/2) … ν θ̂/χ²_ν((1−level)/2); a variance is
         skewed and positive, which a symmetric ±z·s interval ignores. For the bias and d: θ̂ ± z·s.
         """
-        from scipy import stats
-
         if name not in self.standard_errors:
             raise ValueError(f"name={name!r}: must be one of {sorted(self.standard_errors)}")
         level = float(check_positive_real("level", level))
@@ -304,7 +255,132 @@ def _shifted(model: NoiseModel, name: str, step: float) -> NoiseModel:
     return replace(model, **{name: getattr(model, name) + step})
 
 
-def _model_with(sample_rate: float, bias: float, values: dict[str, float], flicker_d: float) -> NoiseModel:
+# --- the observed Allan variance and the options ---------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ObservedAllan:
+    """The octave Allan variance of one record, computed once and shared by every fit of that record.
+
+    Attributes
+    ----------
+    allan : AllanResult
+        Octave τ up to a third of the record, white-noise intervals.
+    length : int
+        Samples in the record.
+    mean : float
+        The record mean (the bias estimate).
+    sample_rate : float
+        Samples per second.
+    ar_source : ndarray or None
+        The record, kept only when AR coefficients are to be estimated from it.
+    """
+
+    allan: AllanResult
+    length: int
+    mean: float
+    sample_rate: float
+    ar_source: np.ndarray | None = None
+
+
+def observe_allan(
+    y: Any, sample_rate: float, *, estimator: str = "overlapping", keep_record: bool = False
+) -> ObservedAllan:
+    """The octave Allan variance of ``y`` (one pass over the data) for :func:`fit_observed`."""
+    sample_rate = float(check_positive_real("sample_rate", sample_rate))
+    samples = check_finite_array("y", y, min_length=3)
+    allan = allan_variance(samples, sample_rate, "octave", estimator=estimator)
+    return ObservedAllan(
+        allan, len(samples), float(samples.mean()), sample_rate, samples if keep_record else None
+    )
+
+
+@dataclass(frozen=True)
+class FitOptions:
+    """What to fit.
+
+    Attributes
+    ----------
+    components : tuple of str
+        From :data:`COMPONENTS`; the bias (record mean) is always estimated.
+    flicker_d : float or None
+        Fixed 1/f order, or None to fit it (profile GLS) when "flicker" is a component.
+    ar_order : int
+        Largest AR order tried by Yule–Walker when "ar" is a component.
+    ar_coefficients : tuple of float or None
+        Fixed AR coefficients (then ``ar_order`` is ignored).
+    tau_range : (float, float) or None
+        Only τ in [low, high] s enter the fit (the short-τ cut-off above a sensor's filter).
+    minimum_clusters : int
+        Only τ with at least this many disjoint clusters in the record enter the fit.
+    iterations : int
+        Re-evaluations of the model-based covariance C.
+    """
+
+    components: tuple[str, ...] = ("white", "rrw")
+    flicker_d: float | None = None
+    ar_order: int = 4
+    ar_coefficients: tuple[float, ...] | None = None
+    tau_range: tuple[float, float] | None = None
+    minimum_clusters: int = 3
+    iterations: int = 3
+
+    def __post_init__(self) -> None:
+        components = self.components
+        if isinstance(components, str) or not all(isinstance(c, str) for c in components):
+            raise TypeError(f"components={components!r}: must be a tuple of names from {COMPONENTS}")
+        unknown = [c for c in components if c not in COMPONENTS]
+        if unknown or not components or len(set(components)) != len(components):
+            raise ValueError(f"components={components!r}: must be distinct names from {COMPONENTS}")
+        object.__setattr__(self, "components", tuple(c for c in COMPONENTS if c in components))
+        if self.flicker_d is not None:
+            object.__setattr__(self, "flicker_d", float(check_fractional_order("flicker_d", self.flicker_d)))
+        check_positive_integer("ar_order", self.ar_order)
+        check_positive_integer("minimum_clusters", self.minimum_clusters, minimum=2)
+        check_positive_integer("iterations", self.iterations)
+        if self.tau_range is not None:
+            if len(self.tau_range) != 2:
+                raise ValueError(f"tau_range={self.tau_range!r}: must be (low, high) in seconds")
+            low, high = (float(check_positive_real("tau_range", value)) for value in self.tau_range)
+            if not low <= high:
+                raise ValueError(f"tau_range={self.tau_range!r}: low must not exceed high")
+
+
+# --- AR coefficients ---------------------------------------------------------------------------------
+
+
+def yule_walker(x: Any, sample_rate: float, maximum_order: int) -> tuple[float, ...]:
+    """AR coefficients by Yule–Walker on ``x`` with its slow part removed (module text); () for order 0.
+
+    The high-pass is a centred moving average of max(1001, 10 s) samples (a shorter one biases the lag
+    covariances by about −(long-run variance)/window); the order is the largest p ≤ ``maximum_order``
+    whose partial autocorrelation (the last Levinson–Durbin coefficient) exceeds 4/√n.
+    """
+    from scipy.ndimage import uniform_filter1d
+
+    samples = check_finite_array("x", x, min_length=3)
+    window = max(1001, round(10 * float(sample_rate)) | 1)
+    fast = samples - uniform_filter1d(samples, window, mode="nearest")
+    n = len(fast)
+    spectrum = np.fft.rfft(fast, 2 * n)
+    autocovariance = np.fft.irfft(spectrum * np.conj(spectrum), 2 * n)[: maximum_order + 1] / n
+    order = 0
+    for p in range(1, maximum_order + 1):
+        coefficients = solve_toeplitz(autocovariance[:p], autocovariance[1 : p + 1])
+        if abs(coefficients[-1]) > 4.0 / math.sqrt(n):
+            order = p
+    if order == 0:
+        return ()
+    coefficients = solve_toeplitz(autocovariance[:order], autocovariance[1 : order + 1])
+    return tuple(float(c) for c in coefficients)
+
+
+# --- the GLS ---------------------------------------------------------------------------------------
+
+
+def _model_with(
+    sample_rate: float, bias: float, values: dict[str, float], flicker_d: float, ar: tuple[float, ...]
+) -> NoiseModel:
     return NoiseModel(
         sample_rate=sample_rate,
         bias=bias,
@@ -313,29 +389,24 @@ def _model_with(sample_rate: float, bias: float, values: dict[str, float], flick
         flicker_variance=values.get("flicker", 0.0),
         flicker_d=flicker_d,
         quantization=math.sqrt(values.get("quantization", 0.0)),
+        ar_variance=values.get("ar", 0.0),
+        ar_coefficients=ar,
     )
 
 
-def _design(
-    components: tuple[str, ...], sizes: np.ndarray, length: int, sample_rate: float, d: float, estimator: str
-) -> np.ndarray:
-    """Columns: the exact model Allan variance of each component at unit parameter."""
-    from carousel_theory.allan import model_allan_variance
-
+def _design(problem: _Problem, d: float) -> np.ndarray:
+    """Columns: the exact Allan variance of each component at unit parameter (quantization: Q = 1 rad)."""
     columns = []
-    for name in components:
-        unit = _model_with(sample_rate, 0.0, {name: 1.0}, d)
-        columns.append(model_allan_variance(unit, sizes, length=length, estimator=estimator))
+    for name in problem.components:
+        column = term_allan_variance(name, problem.sizes, d, problem.ar)
+        columns.append(column * problem.sample_rate**2 if name == "quantization" else column)
     return np.column_stack(columns)
 
 
 def _generalized_least_squares(
-    design: np.ndarray, observed: np.ndarray, covariance: np.ndarray
+    design: np.ndarray, observed: np.ndarray, cholesky: np.ndarray
 ) -> tuple[np.ndarray, float, np.ndarray]:
-    """Non-negative GLS: (θ, objective, whitened design)."""
-    from scipy.optimize import nnls
-
-    cholesky = np.linalg.cholesky(covariance)
+    """Non-negative GLS with C = LLᵀ: (θ, objective, whitened design)."""
     whitened_design = np.linalg.solve(cholesky, design)
     whitened_observed = np.linalg.solve(cholesky, observed)
     # Columns differ by many orders of magnitude; scale them so that NNLS is well conditioned.
@@ -345,11 +416,127 @@ def _generalized_least_squares(
     return theta_scaled / scale, float(residual_norm**2), whitened_design
 
 
+@dataclass(frozen=True)
+class _Problem:
+    """The used τ of one fit: sizes, observed values, components, fixed AR coefficients, record length."""
+
+    sizes: np.ndarray
+    observed: np.ndarray
+    components: tuple[str, ...]
+    ar: tuple[float, ...]
+    length: int
+    sample_rate: float
+    estimator: str
+    fit_d: bool
+
+
+def _used_mask(observed: ObservedAllan, options: FitOptions) -> np.ndarray:
+    allan = observed.allan
+    sizes = np.asarray(allan.samples_per_cluster)
+    used = observed.length // sizes >= options.minimum_clusters
+    if options.tau_range is not None:
+        low, high = (float(value) for value in options.tau_range)
+        used &= (allan.tau >= low * (1 - 1e-12)) & (allan.tau <= high * (1 + 1e-12))
+    parameter_count = len(options.components) + int(_fits_d(options))
+    if used.sum() <= parameter_count:
+        raise ValueError(
+            f"y: {int(used.sum())} octave τ in range, too few to fit {parameter_count} parameters "
+            f"{options.components + (('flicker_d',) if _fits_d(options) else ())}; the recording "
+            f"({observed.length} samples) is too short or tau_range too narrow"
+        )
+    return used
+
+
+def _fits_d(options: FitOptions) -> bool:
+    return "flicker" in options.components and options.flicker_d is None
+
+
+def _ar_coefficients(observed: ObservedAllan, options: FitOptions) -> tuple[float, ...]:
+    if "ar" not in options.components:
+        return ()
+    if options.ar_coefficients is not None:
+        return tuple(float(c) for c in options.ar_coefficients)
+    if observed.ar_source is None:
+        raise ValueError(
+            "observed: the AR coefficients are estimated from the record; observe it with "
+            "keep_record=True or give FitOptions(ar_coefficients=...)"
+        )
+    return yule_walker(observed.ar_source, observed.sample_rate, options.ar_order)
+
+
+def _profile_d(problem: _Problem, cholesky: np.ndarray, d: float) -> float:
+    """The d minimising the GLS objective at fixed covariance (bounded scalar search)."""
+    if not problem.fit_d:
+        return d
+
+    def objective(order: float) -> float:
+        design = _design(problem, order)
+        return _generalized_least_squares(design, problem.observed, cholesky)[1]
+
+    return float(minimize_scalar(objective, bounds=(0.02, 0.98), method="bounded", options={"xatol": 1e-4}).x)
+
+
+def _solve(
+    problem: _Problem, d: float, iterations: int, fixed_covariance: np.ndarray | None
+) -> tuple[np.ndarray, float, np.ndarray, float]:
+    """Iterated GLS: (θ, d, C, χ²). C starts diagonal (white-noise degrees of freedom of the data)."""
+    if fixed_covariance is not None:
+        covariance, iterations = fixed_covariance, 1
+    else:
+        degrees = np.maximum(_white_edf(problem), 1.0)
+        covariance = np.diag(2.0 * problem.observed**2 / degrees)
+    theta = np.zeros(len(problem.components))
+    for iteration in range(iterations + 1):
+        cholesky = np.linalg.cholesky(covariance)
+        d = _profile_d(problem, cholesky, d)
+        design = _design(problem, d)
+        theta, chi_square, _ = _generalized_least_squares(design, problem.observed, cholesky)
+        if iteration == iterations or fixed_covariance is not None or not np.any(theta > 0):
+            break
+        model = _model_with(
+            problem.sample_rate, 0.0, dict(zip(problem.components, theta, strict=True)), d, problem.ar
+        )
+        covariance = allan_estimate_covariance(
+            model, problem.sizes, problem.length, estimator=problem.estimator
+        ).covariance
+    return theta, d, covariance, chi_square
+
+
+def _white_edf(problem: _Problem) -> np.ndarray:
+    from carousel_theory.tau_covariance import allan_estimate_variance
+
+    unit = NoiseModel(sample_rate=problem.sample_rate, white_variance=1.0)
+    variance = allan_estimate_variance(unit, problem.sizes, problem.length, estimator=problem.estimator)
+    return 2.0 * unit.allan_variance(problem.sizes) ** 2 / variance
+
+
+def _parameter_covariance(
+    problem: _Problem, theta: np.ndarray, d: float, covariance: np.ndarray
+) -> tuple[tuple[str, ...], np.ndarray]:
+    """(names, covariance of the parameters) from (JᵀC⁻¹J)⁻¹; d's column is ∂(Aθ)/∂d when d is fitted."""
+    cholesky = np.linalg.cholesky(covariance)
+    design = _design(problem, d)
+    jacobian = np.linalg.solve(cholesky, design)
+    names = tuple(_PARAMETER[c] for c in problem.components)
+    if problem.fit_d:
+        upper, lower = min(d + 1e-4, 0.999), max(d - 1e-4, 0.001)
+        derivative = (_design(problem, upper) - _design(problem, lower)) @ theta / (upper - lower)
+        jacobian = np.column_stack((jacobian, np.linalg.solve(cholesky, derivative)))
+        names = (*names, "flicker_d")
+    # Columns differ by many orders of magnitude: invert the information matrix of the column-scaled
+    # problem, then scale back.
+    column_scale = np.linalg.norm(jacobian, axis=0)
+    column_scale[column_scale == 0] = 1.0
+    scaled = jacobian / column_scale
+    return names, np.linalg.pinv(scaled.T @ scaled) / np.outer(column_scale, column_scale)
+
+
 def _bias_variance(model: NoiseModel, length: int) -> float:
     """Var(ȳ) of the record mean under ``model`` (bias excluded): the record is one averaged bin of
     N = length samples, so white and RRW come from the registry (``white_average_var``,
     ``rrw_average_var`` at k = 1), 1/f from :func:`carousel_theory.propagation.flicker_averaged_bin_variance`,
-    and quantization (a white angle error differenced into the rate) adds 2 f_s² Q²/n²."""
+    quantization (a white angle error differenced into the rate) adds 2 f_s² Q²/n², and the AR term
+    its long-run variance /n (the leading term; the end correction is O(1/n²))."""
     from carousel_theory.formulas import formula
     from carousel_theory.propagation import flicker_averaged_bin_variance
 
@@ -357,9 +544,65 @@ def _bias_variance(model: NoiseModel, length: int) -> float:
     variance = model.white_variance * float(formula("white_average_var").numeric(N=length))
     variance += model.rrw_variance * float(formula("rrw_average_var").numeric(N=length, k=1))
     variance += 2.0 * (model.sample_rate * model.quantization) ** 2 / n**2
+    variance += model.long_run_ar_variance / n if model.ar_variance else 0.0
     if model.flicker_variance:
         variance += model.flicker_variance * flicker_averaged_bin_variance(model.flicker_d, length, 1)
     return variance
+
+
+def fit_observed(
+    observed: ObservedAllan, options: FitOptions, *, fixed_covariance: np.ndarray | None = None
+) -> FitResult:
+    """Fit ``options`` to an :class:`ObservedAllan` (see the module text).
+
+    ``fixed_covariance`` (across the used τ) replaces the iterated model-based C: :func:`nested_test`
+    fits the reduced model under the fuller model's C so that the χ² difference is a likelihood-ratio-
+    type statistic.
+    """
+    used = _used_mask(observed, options)
+    allan = observed.allan
+    ar = _ar_coefficients(observed, options)
+    problem = _Problem(
+        np.asarray(allan.samples_per_cluster)[used],
+        allan.avar[used],
+        options.components,
+        ar,
+        observed.length,
+        observed.sample_rate,
+        allan.estimator,
+        _fits_d(options),
+    )
+    start_d = 0.5 if options.flicker_d is None else options.flicker_d
+    theta, d, covariance, chi_square = _solve(problem, start_d, options.iterations, fixed_covariance)
+    names, parameter_covariance = _parameter_covariance(problem, theta, d, covariance)
+    values = dict(zip(options.components, theta, strict=True))
+    model = _model_with(observed.sample_rate, observed.mean, values, d, ar)
+    errors = dict(zip(names, np.sqrt(np.maximum(np.diag(parameter_covariance), 0.0)), strict=True))
+    errors["bias"] = math.sqrt(_bias_variance(model, observed.length))
+    refreshed = with_model_intervals(allan, model, observed.length) if model.terms() else allan
+    tau_used = allan.tau[used]
+    method = (
+        f"generalized least squares on the {allan.estimator} Allan variance at {int(used.sum())} octave τ "
+        f"({tau_used[0]:.4g} s … {tau_used[-1]:.4g} s), model-based covariance across τ, "
+        f"{options.iterations} iterations"
+        + (", 1/f order d profiled" if problem.fit_d else "")
+        + (f", AR({len(ar)}) coefficients by Yule–Walker" if "ar" in options.components else "")
+    )
+    return FitResult(
+        model=model,
+        standard_errors=errors,
+        covariance=parameter_covariance,
+        parameters=names,
+        method=method,
+        allan=refreshed,
+        model_avar=model.allan_variance(np.asarray(allan.samples_per_cluster)),
+        used=used,
+        chi_square=chi_square,
+        degrees_of_freedom=int(used.sum()) - len(names),
+        at_bound=tuple(name for name, value in zip(names, theta, strict=False) if value <= 0),
+        length=observed.length,
+        tau_covariance=covariance,
+    )
 
 
 def fit_noise_model(
@@ -370,8 +613,11 @@ def fit_noise_model(
     flicker_d: float | None = None,
     tau_range: tuple[float, float] | None = None,
     estimator: str = "overlapping",
-    iterations: int = 4,
+    iterations: int = 3,
     confidence: float = 0.95,
+    ar_order: int = 4,
+    ar_coefficients: tuple[float, ...] | None = None,
+    minimum_clusters: int = 3,
 ) -> FitResult:
     """Identify a noise model from rate samples by GLS on the octave Allan variance (see the module text).
 
@@ -381,7 +627,7 @@ def fit_noise_model(
         Rate samples (rad/s).
     sample_rate : float
         Samples per second.
-    components : tuple of {"white", "rrw", "flicker", "quantization"}
+    components : tuple of {"white", "rrw", "flicker", "quantization", "ar"}
         The processes in the model. The bias (record mean) is always estimated.
     flicker_d : float, optional
         Fix the 1/f order d; without it d is fitted (profile GLS) when "flicker" is a component.
@@ -393,111 +639,82 @@ def fit_noise_model(
         Re-evaluations of the model-based covariance C.
     confidence : float
         Level of the intervals of the returned Allan variance.
+    ar_order, ar_coefficients, minimum_clusters
+        See :class:`FitOptions`.
     """
-    from scipy.optimize import minimize_scalar
-
-    from carousel_theory._validation import check_finite_array, check_positive_integer
-    from carousel_theory.allan import allan_covariance, allan_variance
-
-    sample_rate = float(check_positive_real("sample_rate", sample_rate))
-    if isinstance(components, str) or not all(isinstance(c, str) for c in components):
-        raise TypeError(f"components={components!r}: must be a tuple of names from {COMPONENTS}")
-    unknown = [c for c in components if c not in COMPONENTS]
-    if unknown or not components or len(set(components)) != len(components):
-        raise ValueError(f"components={components!r}: must be distinct names from {COMPONENTS}")
-    components = tuple(c for c in COMPONENTS if c in components)
-    if flicker_d is not None:
-        flicker_d = float(check_fractional_order("flicker_d", flicker_d))
-    iterations = check_positive_integer("iterations", iterations)
-    samples = check_finite_array("y", y, min_length=3)
-    length = len(samples)
-    allan = allan_variance(samples, sample_rate, "octave", estimator=estimator, confidence=confidence)
-    sizes = np.asarray(allan.samples_per_cluster)
-    degrees = np.asarray(allan.edf)
-    used: np.ndarray = np.ones(len(sizes), dtype=np.bool_)
-    if tau_range is not None:
-        if len(tau_range) != 2:
-            raise ValueError(f"tau_range={tau_range!r}: must be (low, high) in seconds")
-        low, high = (float(check_positive_real("tau_range", value)) for value in tau_range)
-        if not low <= high:
-            raise ValueError(f"tau_range={tau_range!r}: low must not exceed high")
-        used = (allan.tau >= low * (1 - 1e-12)) & (allan.tau <= high * (1 + 1e-12))
-    fit_d = "flicker" in components and flicker_d is None
-    parameter_count = len(components) + int(fit_d)
-    if used.sum() <= parameter_count:
-        raise ValueError(
-            f"y: {int(used.sum())} octave τ in range, too few to fit {parameter_count} parameters "
-            f"{components + (('flicker_d',) if fit_d else ())}; the recording ({length} samples) is too "
-            "short or tau_range too narrow"
-        )
-    used_sizes, observed = sizes[used], allan.avar[used]
-    d = 0.5 if flicker_d is None else flicker_d
-
-    # Start: weights from the white-noise degrees of freedom of the observed values (diagonal).
-    covariance = np.diag(2.0 * observed**2 / degrees[used])
-    theta = np.zeros(len(components))
-    for _ in range(iterations):
-        if fit_d:
-
-            def objective(order: float, covariance: np.ndarray = covariance) -> float:
-                design = _design(components, used_sizes, length, sample_rate, order, estimator)
-                return _generalized_least_squares(design, observed, covariance)[1]
-
-            d = float(
-                minimize_scalar(objective, bounds=(0.02, 0.98), method="bounded", options={"xatol": 1e-4}).x
-            )
-        design = _design(components, used_sizes, length, sample_rate, d, estimator)
-        theta, chi_square, whitened = _generalized_least_squares(design, observed, covariance)
-        model = _model_with(sample_rate, 0.0, dict(zip(components, theta, strict=True)), d)
-        if not any(theta > 0):
-            break
-        covariance = allan_covariance(model, used_sizes, length, estimator=estimator)
-    design = _design(components, used_sizes, length, sample_rate, d, estimator)
-    theta, chi_square, whitened = _generalized_least_squares(design, observed, covariance)
-    names = tuple(_PARAMETER[c] for c in components)
-    jacobian = whitened
-    if fit_d:
-        # d enters non-linearly: its column of the Jacobian is ∂(Aθ)/∂d, so that the standard errors of
-        # the variances include the uncertainty of d (they are strongly correlated with it).
-        step = 1e-4
-        upper = _design(components, used_sizes, length, sample_rate, min(d + step, 0.999), estimator)
-        lower = _design(components, used_sizes, length, sample_rate, max(d - step, 0.001), estimator)
-        derivative = (upper - lower) @ theta / (min(d + step, 0.999) - max(d - step, 0.001))
-        cholesky = np.linalg.cholesky(covariance)
-        jacobian = np.column_stack((whitened, np.linalg.solve(cholesky, derivative)))
-        names = (*names, "flicker_d")
-    # Columns differ by many orders of magnitude (variances of 1e-12 next to d of order 1): invert the
-    # information matrix of the column-scaled problem, then scale back.
-    column_scale = np.linalg.norm(jacobian, axis=0)
-    column_scale[column_scale == 0] = 1.0
-    scaled = jacobian / column_scale
-    parameter_covariance = np.linalg.pinv(scaled.T @ scaled) / np.outer(column_scale, column_scale)
-    errors = dict(zip(names, np.sqrt(np.diag(parameter_covariance)), strict=True))
-    at_bound = tuple(name for name, value in zip(names, theta, strict=False) if value <= 0)
-    mean = float(samples.mean())
-    model = _model_with(sample_rate, mean, dict(zip(components, theta, strict=True)), d)
-    errors["bias"] = math.sqrt(_bias_variance(model, length))
-    from carousel_theory.allan import model_allan_variance
-
-    refreshed = allan_variance(
-        samples, sample_rate, "octave", estimator=estimator, noise=model, confidence=confidence
+    options = FitOptions(
+        components, flicker_d, ar_order, ar_coefficients, tau_range, minimum_clusters, iterations
     )
-    method = (
-        f"generalized least squares on the {estimator} Allan variance at {int(used.sum())} octave τ "
-        f"({allan.tau[used][0]:.4g} s … {allan.tau[used][-1]:.4g} s), model-based covariance across τ, "
-        f"{iterations} iterations" + (", 1/f order d profiled" if fit_d else "")
-    )
-    return FitResult(
-        model=model,
-        standard_errors=errors,
-        covariance=parameter_covariance,
-        parameters=names,
-        method=method,
-        allan=refreshed,
-        model_avar=model_allan_variance(model, sizes, length=length, estimator=estimator),
-        used=used,
-        chi_square=chi_square,
-        degrees_of_freedom=int(used.sum()) - parameter_count,
-        at_bound=at_bound,
-        length=length,
+    observed = observe_allan(y, sample_rate, estimator=estimator, keep_record="ar" in options.components)
+    if confidence != observed.allan.confidence:
+        confidence = float(check_positive_real("confidence", confidence))
+        if not confidence < 1:
+            raise ValueError(f"confidence={confidence!r}: must be in (0, 1)")
+        observed = replace(observed, allan=replace(observed.allan, confidence=confidence))
+    return fit_observed(observed, options)
+
+
+# --- model comparison and run-to-run consistency -----------------------------------------------------
+
+
+@dataclass(frozen=True)
+class NestedTest:
+    """A fit with and without one term, compared under the fuller model's covariance across τ.
+
+    ``chi_square_difference`` = χ²(reduced) − χ²(full) is χ² with ``degrees_of_freedom`` (the parameters
+    the term adds) when the term is absent; ``p_value`` is its upper tail. A term that cannot lower the
+    GLS objective (estimated at zero) gives a difference of 0 and p = 1.
+    """
+
+    term: str
+    chi_square_difference: float
+    degrees_of_freedom: int
+    p_value: float
+    full: FitResult
+    reduced: FitResult
+
+
+def nested_test(observed: ObservedAllan, options: FitOptions, term: str) -> NestedTest:
+    """Is ``term`` needed? Fit ``options`` (which must include it) and the same without it (module text)."""
+    if term not in options.components:
+        raise ValueError(f"term={term!r}: must be one of the fitted components {options.components}")
+    if len(options.components) < 2:
+        raise ValueError(f"options.components={options.components!r}: nothing is left without {term!r}")
+    full = fit_observed(observed, options)
+    reduced_options = replace(options, components=tuple(c for c in options.components if c != term))
+    reduced = fit_observed(observed, reduced_options, fixed_covariance=full.tau_covariance)
+    if _used_mask(observed, reduced_options).sum() != full.used.sum():
+        raise ValueError("the full and the reduced fit use different τ; give an explicit tau_range")
+    difference = max(reduced.chi_square - full.chi_square, 0.0)
+    degrees = len(full.parameters) - len(reduced.parameters)
+    return NestedTest(term, difference, degrees, float(stats.chi2.sf(difference, degrees)), full, reduced)
+
+
+@dataclass(frozen=True)
+class ConsistencyTest:
+    """Inverse-variance weighted mean of estimates from several runs and the χ² of the runs about it."""
+
+    mean: float
+    spread: float
+    chi_square: float
+    degrees_of_freedom: int
+    p_value: float
+
+
+def consistency_test(values: Any) -> ConsistencyTest | None:
+    """Are the runs one population? ``values`` is a sequence of (estimate, standard error).
+
+    χ² = Σ ((x_k − x̄_w)/s_k)² with x̄_w the inverse-variance weighted mean, on K − 1 degrees of freedom.
+    None when there are fewer than 2 runs or an error is not finite and positive.
+    """
+    estimates = np.array([float(v) for v, _ in values])
+    errors = np.array([float(e) for _, e in values])
+    if len(estimates) < 2 or not np.all(np.isfinite(errors)) or np.any(errors <= 0):
+        return None
+    weights = 1.0 / errors**2
+    mean = float(np.sum(weights * estimates) / np.sum(weights))
+    chi_square = float(np.sum(((estimates - mean) / errors) ** 2))
+    degrees = len(estimates) - 1
+    return ConsistencyTest(
+        mean, float(np.std(estimates, ddof=1)), chi_square, degrees, float(stats.chi2.sf(chi_square, degrees))
     )

@@ -27,6 +27,7 @@ import numpy as np
 from carousel_theory._validation import check_positive_integer, check_positive_real, check_real
 from carousel_theory.data import Recording, recording_from_arrays
 from carousel_theory.effects import CATALOGUE, check_effect_parameters
+from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel
 from carousel_theory.processes import sample_flicker, sample_rate_random_walk, sample_white
 
 __all__ = [
@@ -34,9 +35,42 @@ __all__ = [
     "Injection",
     "default_temperature_profile",
     "parse_injection",
+    "sample_noise",
     "simulate_recording",
     "write_recording",
 ]
+
+
+def sample_noise(model: NoiseModel, length: int, *, rng: np.random.Generator) -> np.ndarray:
+    """One axis of ``length`` samples of ``model``: b + white + RRW (eq. (2), r_0 = 0) + 1/f (eq. (3),
+    started at t = 1) + quantization (f_s (a_t − a_{t−1}), a white angle error of variance Q²) + the AR term
+    started in its stationary state (a burn-in until the slowest root's envelope is below
+    :data:`carousel_theory.noise_model.AR_TRUNCATION`)."""
+    from scipy.signal import lfilter
+
+    length = check_positive_integer("length", length, minimum=1)
+    if not isinstance(model, NoiseModel):
+        raise TypeError(f"model={model!r}: must be a NoiseModel")
+    if not isinstance(rng, np.random.Generator):
+        raise TypeError(f"rng={rng!r}: must be a numpy.random.Generator")
+    y = np.full(length, float(model.bias))
+    if model.white_variance:
+        y += sample_white(length, rng=rng, variance=float(model.white_variance))
+    if model.rrw_variance:
+        y += sample_rate_random_walk(length, rng=rng, variance=float(model.rrw_variance))
+    if model.flicker_variance:
+        flicker = sample_flicker(length, rng=rng, d=float(model.flicker_d))
+        y += np.sqrt(float(model.flicker_variance)) * flicker
+    if model.quantization:
+        angle = float(model.quantization) * rng.standard_normal(length + 1)
+        y += float(model.sample_rate) * np.diff(angle)
+    if model.ar_variance:
+        phi = np.asarray(model.ar_coefficients, dtype=np.float64)
+        rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -phi)))))) if len(phi) else 0.0
+        burn = int(np.log(AR_TRUNCATION) / np.log(rho)) + len(phi) if rho > 0 else 0
+        innovations = np.sqrt(float(model.ar_variance)) * rng.standard_normal(length + burn)
+        y += lfilter([1.0], np.concatenate(([1.0], -phi)), innovations)[burn:]
+    return y
 
 
 def _sawtooth(time: np.ndarray, amplitude: float = 1e-3, period: float = 60.0) -> np.ndarray:
@@ -109,6 +143,81 @@ def default_temperature_profile(time: np.ndarray) -> np.ndarray:
     return 25.0 + 0.5 * relative + 0.8 * np.sin(2.0 * np.pi * relative / 0.6 + 0.3)
 
 
+def _check_size_rate_generator(samples: Any, sample_rate: Any, rng: Any) -> tuple[int, float]:
+    samples = check_positive_integer("samples", samples, minimum=2)
+    sample_rate = float(check_positive_real("sample_rate", sample_rate))
+    if not isinstance(rng, np.random.Generator):
+        raise TypeError(f"rng={rng!r}: must be a numpy.random.Generator (np.random.default_rng(seed))")
+    return samples, sample_rate
+
+
+def _axis_biases(axes: Sequence[str], bias: float | Mapping[str, float]) -> dict[str, float]:
+    if isinstance(axes, str) or not axes or not all(isinstance(a, str) and a for a in axes):
+        raise TypeError(f"axes={axes!r}: must be a non-empty sequence of axis names")
+    if len(set(axes)) != len(axes):
+        raise ValueError(f"axes={axes!r}: names must be distinct")
+    if isinstance(bias, Mapping):
+        missing = [a for a in axes if a not in bias]
+        if missing:
+            raise ValueError(f"bias={bias!r}: no value for axes {missing}")
+        return {a: float(check_real(f"bias[{a!r}]", bias[a])) for a in axes}
+    return {a: float(check_real("bias", bias)) for a in axes}
+
+
+def _temperature_column(temperature: Any, time: np.ndarray, resolved: list) -> np.ndarray | None:
+    if isinstance(temperature, str):
+        if temperature != "auto":
+            raise ValueError(f"temperature={temperature!r}: must be 'auto', None or an array")
+        column: np.ndarray | None = default_temperature_profile(time)
+    elif temperature is None:
+        column = None
+    else:
+        column = np.asarray(temperature, dtype=np.float64)
+        if column.shape != time.shape or not np.all(np.isfinite(column)):
+            raise ValueError(f"temperature: must be {len(time)} finite values in °C")
+    if column is None and any(name == "temperature" for name, _ in resolved):
+        raise ValueError("effects: a 'temperature' effect needs a temperature column (temperature='auto')")
+    return column
+
+
+def _simulate_axis(
+    declared: NoiseModel,
+    bias: float,
+    time: np.ndarray,
+    temperature: np.ndarray | None,
+    resolved: list,
+    rng: np.random.Generator,
+) -> np.ndarray:
+    """One axis: white noise (through any noise filter), bias, RRW, 1/f, additive, then output effects."""
+    samples = len(time)
+    white = (
+        sample_white(samples, rng=rng, variance=declared.white_variance)
+        if declared.white_variance
+        else np.zeros(samples)
+    )
+    # Effects that filter the white noise act on it before it joins the other components.
+    for name, parameters in resolved:
+        if name in CATALOGUE and CATALOGUE[name].kind == "noise_filter":
+            white = CATALOGUE[name].inject(white, time, temperature, rng, parameters)
+    signal = bias + white
+    if declared.rrw_variance:
+        signal = signal + sample_rate_random_walk(samples, rng=rng, variance=declared.rrw_variance)
+    if declared.flicker_variance:
+        signal = signal + sample_flicker(
+            samples, rng=rng, d=declared.flicker_d, variance=declared.flicker_variance
+        )
+    for name, parameters in resolved:
+        if name in OUTSIDE_CATALOGUE:
+            signal = signal + OUTSIDE_CATALOGUE[name][0](time, **parameters)
+        elif CATALOGUE[name].kind == "additive":
+            signal = signal + CATALOGUE[name].inject(np.zeros(samples), time, temperature, rng, parameters)
+    # Output effects (rounding) act last, on the complete signal.
+    for name, parameters in resolved:
+        if name in CATALOGUE and CATALOGUE[name].kind == "output":
+            signal = CATALOGUE[name].inject(signal, time, temperature, rng, parameters)
+    return signal
+
+
 def simulate_recording(
     samples: int,
     sample_rate: float,
@@ -149,84 +258,34 @@ def simulate_recording(
         When given, a ``phi`` column of a uniform rotation with this many samples per revolution,
         φ_i = 2π i / N (TIM 2014 eq. (6)); the rates stay those of a static sensor.
 
-    Returns
-    -------
-    carousel_theory.data.Recording
     """
-    samples = check_positive_integer("samples", samples, minimum=2)
-    sample_rate = float(check_positive_real("sample_rate", sample_rate))
-    if not isinstance(rng, np.random.Generator):
-        raise TypeError(f"rng={rng!r}: must be a numpy.random.Generator (np.random.default_rng(seed))")
-    white_variance = float(check_positive_real("white_variance", white_variance, allow_zero=True))
-    rrw_variance = float(check_positive_real("rrw_variance", rrw_variance, allow_zero=True))
-    flicker_variance = float(check_positive_real("flicker_variance", flicker_variance, allow_zero=True))
-    if isinstance(axes, str) or not axes or not all(isinstance(a, str) and a for a in axes):
-        raise TypeError(f"axes={axes!r}: must be a non-empty sequence of axis names")
-    if len(set(axes)) != len(axes):
-        raise ValueError(f"axes={axes!r}: names must be distinct")
-    if isinstance(bias, Mapping):
-        missing = [a for a in axes if a not in bias]
-        if missing:
-            raise ValueError(f"bias={bias!r}: no value for axes {missing}")
-        biases = {a: float(check_real(f"bias[{a!r}]", bias[a])) for a in axes}
-    else:
-        biases = {a: float(check_real("bias", bias)) for a in axes}
+    samples, sample_rate = _check_size_rate_generator(samples, sample_rate, rng)
+    biases = _axis_biases(axes, bias)
     injections = [parse_injection(e) if isinstance(e, str) else e for e in effects]
     resolved = [(i.name, _resolved_parameters(i)) for i in injections]
-    if samples_per_revolution is not None:
-        samples_per_revolution = check_positive_integer("samples_per_revolution", samples_per_revolution, 3)
     time = np.arange(samples, dtype=np.float64) / sample_rate
-    if isinstance(temperature, str):
-        if temperature != "auto":
-            raise ValueError(f"temperature={temperature!r}: must be 'auto', None or an array")
-        temperature_column: np.ndarray | None = default_temperature_profile(time)
-    elif temperature is None:
-        temperature_column = None
-    else:
-        temperature_column = np.asarray(temperature, dtype=np.float64)
-        if temperature_column.shape != (samples,) or not np.all(np.isfinite(temperature_column)):
-            raise ValueError(f"temperature: must be {samples} finite values in °C")
-    if temperature_column is None and any(name == "temperature" for name, _ in resolved):
-        raise ValueError("effects: a 'temperature' effect needs a temperature column (temperature='auto')")
-
-    rates: dict[str, np.ndarray] = {}
-    for axis in axes:
-        white = (
-            sample_white(samples, rng=rng, variance=white_variance) if white_variance else np.zeros(samples)
-        )
-        # Effects that filter the white noise act on it before it joins the other components.
-        for name, parameters in resolved:
-            if name in CATALOGUE and CATALOGUE[name].kind == "noise_filter":
-                white = CATALOGUE[name].inject(white, time, temperature_column, rng, parameters)
-        signal = biases[axis] + white
-        if rrw_variance:
-            signal = signal + sample_rate_random_walk(samples, rng=rng, variance=rrw_variance)
-        if flicker_variance:
-            signal = signal + sample_flicker(samples, rng=rng, d=flicker_d, variance=flicker_variance)
-        for name, parameters in resolved:
-            if name in OUTSIDE_CATALOGUE:
-                signal = signal + OUTSIDE_CATALOGUE[name][0](time, **parameters)
-            elif CATALOGUE[name].kind == "additive":
-                signal = signal + CATALOGUE[name].inject(
-                    np.zeros(samples), time, temperature_column, rng, parameters
-                )
-        # Output effects (rounding) act last, on the complete signal.
-        for name, parameters in resolved:
-            if name in CATALOGUE and CATALOGUE[name].kind == "output":
-                signal = CATALOGUE[name].inject(signal, time, temperature_column, rng, parameters)
-        rates[axis] = signal
-    angle = None
-    if samples_per_revolution is not None:
-        angle = 2.0 * np.pi * (np.arange(1, samples + 1) % samples_per_revolution) / samples_per_revolution
-    described = ", ".join(name for name, _ in resolved) or "none"
+    temperature_column = _temperature_column(temperature, time, resolved)
+    declared = NoiseModel(sample_rate, 0.0, white_variance, rrw_variance, flicker_variance, flicker_d)
+    rates = {
+        axis: _simulate_axis(declared, biases[axis], time, temperature_column, resolved, rng) for axis in axes
+    }
+    angle = _uniform_rotation(samples, samples_per_revolution)
     return recording_from_arrays(
         rates,
         time=time,
         sample_rate=sample_rate,
         temperature=temperature_column,
         angle=angle,
-        source=f"simulated ({described})",
+        source=f"simulated ({', '.join(name for name, _ in resolved) or 'none'})",
     )
+
+
+def _uniform_rotation(samples: int, samples_per_revolution: int | None) -> np.ndarray | None:
+    """φ_i = 2π i / N (TIM 2014 eq. (6)), or None."""
+    if samples_per_revolution is None:
+        return None
+    per_revolution = check_positive_integer("samples_per_revolution", samples_per_revolution, 3)
+    return 2.0 * np.pi * (np.arange(1, samples + 1) % per_revolution) / per_revolution
 
 
 def write_recording(recording: Recording, path: str | Path) -> Path:

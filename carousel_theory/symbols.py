@@ -17,6 +17,7 @@ __all__ = [
     "beta",
     "cluster_size",
     "d",
+    "difference_count",
     "epsilon",
     "g",
     "h",
@@ -104,3 +105,5 @@ psi = sp.Symbol("psi", real=True)
 epsilon = sp.Symbol("epsilon", real=True)
 wobble = sp.Symbol("wobble", nonnegative=True)
 omega_r = sp.Symbol("omega_r", positive=True)
+#: Number K of squared differences an Allan-variance estimate averages (n − 2m + 1 when overlapping).
+difference_count = sp.Symbol("K", integer=True, positive=True)

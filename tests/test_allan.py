@@ -367,3 +367,13 @@ def test_allan_covariance_of_flicker_is_close_to_dense():
         [[2 * np.sum((a @ covariance @ b.T) ** 2) / (4 * len(a) * len(b)) for b in rows] for a in rows]
     )
     np.testing.assert_allclose(allan.allan_covariance(model, sizes, length), expected, rtol=0.05)
+
+
+@pytest.mark.parametrize("length", [3, 5, 4097, 16384 + 5, 2 * 16384 + 4100, 123_457])
+def test_overlapping_octave_equals_allantools_across_chunk_boundaries(length):
+    import allantools
+
+    y = np.random.default_rng(length).standard_normal(length) + 0.3
+    ours = allan_variance(y, 1.0)
+    peer = allantools.oadev(y, rate=1.0, data_type="freq", taus=ours.tau)[1] ** 2
+    np.testing.assert_allclose(ours.avar, peer, rtol=1e-12)

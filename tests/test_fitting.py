@@ -212,3 +212,101 @@ def test_invalid_calls(call, error, message):
 def test_all_is_honest():
     for name in fitting.__all__:
         assert hasattr(fitting, name), name
+
+
+# --- the typed API for the closed loop: AR short noise, nested fits, consistency ----------------------
+
+from carousel_theory.fitting import (  # noqa: E402
+    ConsistencyTest,
+    FitOptions,
+    consistency_test,
+    fit_observed,
+    nested_test,
+    observe_allan,
+    yule_walker,
+)
+from carousel_theory.simulate import sample_noise  # noqa: E402
+
+
+def test_ar_short_noise_is_identified():
+    rng = np.random.default_rng(77)
+    truth = NoiseModel(sample_rate=100.0, ar_variance=4e-6, ar_coefficients=(0.7,), rrw_variance=1e-12)
+    y = sample_noise(truth, 400_000, rng=rng)
+    result = fit_noise_model(y, 100.0, ("rrw", "ar"), ar_order=3)
+    assert len(result.model.ar_coefficients) == 1
+    assert result.model.ar_coefficients[0] == pytest.approx(0.7, abs=5 * 0.72 / np.sqrt(400_000))
+    error = result.standard_errors["ar_variance"]
+    assert abs(result.model.ar_variance - 4e-6) <= Z_MONTE_CARLO * error
+    assert result.p_value > 1e-4  # the declared model explains the Allan variance
+
+
+def test_yule_walker_finds_no_order_in_white_noise():
+    rng = np.random.default_rng(5)
+    assert yule_walker(rng.standard_normal(100_000), 100.0, 4) == ()
+
+
+def test_observed_allan_is_reused_and_gives_the_same_fit():
+    rng = np.random.default_rng(8)
+    y = 1e-3 * rng.standard_normal(50_000) + 1e-6 * np.cumsum(rng.standard_normal(50_000))
+    observed = observe_allan(y, 100.0)
+    direct = fit_noise_model(y, 100.0)
+    reused = fit_observed(observed, FitOptions())
+    assert reused.model == direct.model
+    assert reused.chi_square == direct.chi_square
+
+
+def test_nested_test_needs_rrw_only_when_present():
+    rng = np.random.default_rng(9)
+    options = FitOptions(components=("white", "rrw"))
+    white_only = observe_allan(1e-3 * rng.standard_normal(200_000), 100.0)
+    with_walk = observe_allan(
+        1e-3 * rng.standard_normal(200_000) + 3e-6 * np.cumsum(rng.standard_normal(200_000)), 100.0
+    )
+    absent = nested_test(white_only, options, "rrw")
+    present = nested_test(with_walk, options, "rrw")
+    assert absent.degrees_of_freedom == present.degrees_of_freedom == 1
+    assert absent.p_value > 1e-3
+    assert present.p_value < 1e-6
+    assert present.chi_square_difference == pytest.approx(
+        present.reduced.chi_square - present.full.chi_square
+    )
+
+
+def test_consistency_test_worked_by_hand():
+    # Estimates 1 and 3 with unit errors: weighted mean 2, χ² = 1 + 1 = 2 on 1 degree of freedom.
+    from scipy import stats
+
+    result = consistency_test([(1.0, 1.0), (3.0, 1.0)])
+    assert isinstance(result, ConsistencyTest)
+    assert (result.mean, result.chi_square, result.degrees_of_freedom) == (2.0, 2.0, 1)
+    assert result.p_value == pytest.approx(float(stats.chi2.sf(2.0, 1)), rel=1e-15)
+    assert consistency_test([(1.0, 1.0)]) is None
+    assert consistency_test([(1.0, 1.0), (2.0, math.inf)]) is None
+
+
+BAD_OPTIONS = [
+    ("components-string", {"components": "white"}, TypeError, "components='white'"),
+    ("components-unknown", {"components": ("white", "pink")}, ValueError, "components="),
+    ("components-repeated", {"components": ("white", "white")}, ValueError, "distinct"),
+    ("flicker-d", {"flicker_d": 1.5}, ValueError, "flicker_d=1.5"),
+    ("ar-order", {"ar_order": 0}, ValueError, "ar_order=0"),
+    ("minimum-clusters", {"minimum_clusters": 1}, ValueError, "minimum_clusters=1"),
+    ("iterations", {"iterations": 0}, ValueError, "iterations=0"),
+    ("tau-range-order", {"tau_range": (2.0, 1.0)}, ValueError, "low must not exceed high"),
+]
+
+
+@pytest.mark.parametrize(
+    ("options", "error", "message"), [b[1:] for b in BAD_OPTIONS], ids=[b[0] for b in BAD_OPTIONS]
+)
+def test_bad_options(options, error, message):
+    with pytest.raises(error, match=message):
+        FitOptions(**options)
+
+
+def test_nested_test_refuses_a_term_not_fitted():
+    observed = observe_allan(np.random.default_rng(1).standard_normal(10_000), 100.0)
+    with pytest.raises(ValueError, match="term='flicker'"):
+        nested_test(observed, FitOptions(), "flicker")
+    with pytest.raises(ValueError, match="keep_record=True"):
+        fit_observed(observed, FitOptions(components=("white", "ar")))

@@ -14,6 +14,7 @@ import numpy as np
 from carousel_theory.allan import ESTIMATORS, NOISE_TYPES, AllanResult, allan_variance
 from carousel_theory.cli._recording_options import add_recording_options
 from carousel_theory.data import Recording, load_recording
+from carousel_theory.progress import progress
 
 
 def add_recording_arguments(parser: argparse.ArgumentParser) -> None:
@@ -134,7 +135,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--confidence={args.confidence!r}: must be in (0, 1)")
     recording = read_recording(args.data, args)
     results = {}
-    for name, rates in recording.rates.items():
+    for name, rates in progress(recording.rates.items(), len(recording.rates), "allan: axes"):
         results[name] = allan_variance(
             rates,
             recording.sample_rate,

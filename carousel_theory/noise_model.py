@@ -1,0 +1,398 @@
+"""The gyro noise model: one frozen dataclass, each term with its exact autocovariance, spectrum and Allan
+variance.
+
+Terms (per-sample discrete terms of TIM 2014 §II, sample interval Δt = 1/f_s)
+    bias            b, eq. (1): adds nothing to any variance below.
+    white           y_t = e_t, Var e = σ_WN².
+    rate random walk y_t = y_{t−1} + q_t, Var q = σ_q², eq. (2).
+    1/f             y = (1 − B)^{−d} w, Var w = σ_w², eq. (3), any 0 < d < 1.
+    quantization    y_t = (a_t − a_{t−1}) f_s with a white angle error of variance Q².
+    autoregressive  x_t = Σ_{j=1}^{p} φ_j x_{t−j} + ε_t, Var ε = σ_AR² (first-order Gauss–Markov is p = 1):
+                    the short correlated noise of a sensor's internal low-pass filter.
+
+One representation serves every term: the autocovariance γ_z of the *increments* z_t = y_t − y_{t−1}.
+Every term has stationary increments, also the rate random walk and the 1/f noise for d ≥ ½ (whose rate
+is not stationary): white 2σ², −σ² at lag ±1; rate random walk σ_q² at lag 0; quantization f_s²Q²
+(6, −4, 1); autoregressive 2γ(k) − γ(k−1) − γ(k+1) from the AR autocovariance γ; 1/f the
+ARFIMA(0, d − 1, 0) autocovariance σ_w² Γ(3 − 2d)/Γ(2 − d)² · Π_{j=1}^{k} (j − 2 + d)/(j + 1 − d).
+The increments of the 1/f process of eq. (3), which starts at t = 1, converge to this stationary
+sequence; the Allan variance of :mod:`carousel_theory.allan_model` is the one of the stationary
+differences (the eq. (3) value inside a record of given length stays in
+:func:`carousel_theory.allan.flicker_allan_variance`).
+
+Allan variance (m samples per cluster, τ = mΔt)
+    The cluster-mean difference d = Σ_{k<m} (y_{s+m+k} − y_{s+k}) has Var d = Σ_{|j|<m} (m − |j|)
+    [D(|m + j|) − D(|j|)], with D(h) = E(y_{t+h} − y_t)² = Σ_{|k|<h} (h − |k|) γ_z(k) the variogram; the
+    Allan variance is Var d/(2m²). White, rate random walk and quantization have the closed forms
+    σ_WN²/m, σ_q²(2m² + 1)/(6m), 3Q²/τ² (SymPy, derived in ``derivations/allan_variance_models.md`` and
+    lambdified once); 1/f and AR are the exact finite sum above, O(m) per τ, with no truncation.
+
+Public API
+    :class:`NoiseModel` (the dataclass), :func:`increment_autocovariance`, :func:`spectral_density`,
+    :func:`term_allan_variance`, :func:`ar_autocovariance`, :data:`TERMS`.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+import sympy as sp
+from scipy import linalg
+
+from carousel_theory import symbols, units
+from carousel_theory._validation import check_fractional_order, check_positive_real, check_real
+
+__all__ = [
+    "QUANTIZATION_ALLAN_VARIANCE",
+    "RRW_ALLAN_VARIANCE",
+    "TERMS",
+    "WHITE_ALLAN_VARIANCE",
+    "NoiseModel",
+    "ar_autocovariance",
+    "increment_autocovariance",
+    "spectral_density",
+    "term_allan_variance",
+]
+
+#: Noise terms, in a fixed order (the rows of a fit).
+TERMS = ("white", "rrw", "flicker", "quantization", "ar")
+
+_m = symbols.cluster_size
+#: Exact Allan variance of discrete white noise of per-sample variance σ_WN², m samples per cluster.
+WHITE_ALLAN_VARIANCE: sp.Expr = symbols.white_sample_variance / _m
+#: Exact Allan variance of the rate random walk of TIM 2014 eq. (2), increment variance σ_q² per sample.
+RRW_ALLAN_VARIANCE: sp.Expr = symbols.rrw_increment_variance * (2 * _m**2 + 1) / (6 * _m)
+#: Exact Allan variance of a white angle error of variance Q² differenced into the rate (τ = mΔt).
+QUANTIZATION_ALLAN_VARIANCE: sp.Expr = 3 * symbols.quantization_step**2 / (_m * symbols.sample_interval) ** 2
+
+_white_numeric = sp.lambdify((symbols.white_sample_variance, _m), WHITE_ALLAN_VARIANCE, "numpy")
+_rrw_numeric = sp.lambdify((symbols.rrw_increment_variance, _m), RRW_ALLAN_VARIANCE, "numpy")
+_quantization_numeric = sp.lambdify(
+    (symbols.quantization_step, _m, symbols.sample_interval), QUANTIZATION_ALLAN_VARIANCE, "numpy"
+)
+
+#: The AR autocovariance is computed out to the lag where the geometric envelope ρ^k of its slowest root
+#: falls below this fraction (the neglected tail is bounded by it, relative to γ(0)).
+AR_TRUNCATION = 1e-17
+
+
+@dataclass(frozen=True)
+class NoiseModel:
+    """A gyro noise model in the per-sample discrete terms of TIM 2014 §II.
+
+    Attributes
+    ----------
+    sample_rate : float
+        Samples per second f_s (Δt = 1/f_s).
+    bias : float
+        Constant bias b (rad/s), eq. (1).
+    white_variance : float
+        Per-sample white-noise variance σ_WN² ((rad/s)²).
+    rrw_variance : float
+        Per-sample increment variance σ_q² of the rate random walk, eq. (2) ((rad/s)²).
+    flicker_variance : float
+        Driving variance σ_w² of the fractionally integrated 1/f noise, eq. (3) ((rad/s)²).
+    flicker_d : float
+        Order 0 < d < 1 of the fractional integration (ignored when ``flicker_variance`` is 0).
+    quantization : float
+        Angle quantization Q (rad): Allan variance 3Q²/τ².
+    ar_variance : float
+        Innovation variance σ_AR² of the autoregressive short noise ((rad/s)²).
+    ar_coefficients : tuple of float
+        φ_1 … φ_p of x_t = Σ φ_j x_{t−j} + ε_t (stationary: every root of 1 − Σ φ_j z^j outside the
+        unit circle); empty for no autoregressive term.
+    """
+
+    sample_rate: float
+    bias: float = 0.0
+    white_variance: float = 0.0
+    rrw_variance: float = 0.0
+    flicker_variance: float = 0.0
+    flicker_d: float = 0.5
+    quantization: float = 0.0
+    ar_variance: float = 0.0
+    ar_coefficients: tuple[float, ...] = ()
+    extra: dict[Any, Any] = field(default_factory=dict, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        check_positive_real("sample_rate", self.sample_rate)
+        check_real("bias", self.bias)
+        for name in ("white_variance", "rrw_variance", "flicker_variance", "quantization", "ar_variance"):
+            check_positive_real(name, getattr(self, name), allow_zero=True)
+        check_fractional_order("flicker_d", self.flicker_d)
+        coefficients = self.ar_coefficients
+        if not isinstance(coefficients, tuple):
+            raise TypeError(f"ar_coefficients={coefficients!r}: must be a tuple of floats")
+        for j, value in enumerate(coefficients):
+            check_real(f"ar_coefficients[{j}]", value)
+        if coefficients and _slowest_root(coefficients) >= 1.0:
+            raise ValueError(
+                f"ar_coefficients={coefficients!r}: must describe a stationary AR process (every root of "
+                "1 − Σ φ_j z^j outside the unit circle)"
+            )
+
+    # --- the terms ----------------------------------------------------------------------------------
+    def terms(self) -> dict[str, float]:
+        """Driving variance of each term present (quantization as f_s²Q², the variance of its rate)."""
+        values = {
+            "white": float(self.white_variance),
+            "rrw": float(self.rrw_variance),
+            "flicker": float(self.flicker_variance),
+            "quantization": float(self.quantization) ** 2 * float(self.sample_rate) ** 2,
+            "ar": float(self.ar_variance),
+        }
+        return {name: value for name, value in values.items() if value > 0}
+
+    def unit(self, term: str) -> NoiseModel:
+        """The same model with ``term`` at unit driving variance and every other term at zero."""
+        zero = replace(
+            self,
+            white_variance=0.0,
+            rrw_variance=0.0,
+            flicker_variance=0.0,
+            quantization=0.0,
+            ar_variance=0.0,
+        )
+        if term == "quantization":
+            return replace(zero, quantization=1.0 / float(self.sample_rate))
+        if term not in TERMS:
+            raise ValueError(f"term={term!r}: must be one of {TERMS}")
+        return replace(zero, **{_FIELD[term]: 1.0})  # type: ignore[arg-type]
+
+    @property
+    def long_run_ar_variance(self) -> float:
+        """σ_AR²/(1 − Σ φ_j)²: the white-noise variance that long averages of the AR term see."""
+        return float(self.ar_variance) / (1.0 - sum(self.ar_coefficients)) ** 2
+
+    def increment_autocovariance(self, lags: int) -> np.ndarray:
+        """γ_z(k), k = 0 … lags − 1, of the increments of the whole model (see the module text)."""
+        total = np.zeros(lags)
+        for term, variance in self.terms().items():
+            total += variance * increment_autocovariance(term, lags, self.flicker_d, self.ar_coefficients)
+        return total
+
+    def spectral_density(self, frequencies: Any) -> np.ndarray:
+        """Two-sided discrete spectral density of the rate at ``frequencies`` (Hz)."""
+        omega = 2.0 * np.pi * np.asarray(frequencies, dtype=np.float64) / float(self.sample_rate)
+        total = np.zeros_like(omega)
+        for term, variance in self.terms().items():
+            total = total + variance * spectral_density(term, omega, self.flicker_d, self.ar_coefficients)
+        return total
+
+    def allan_variance(self, tau_samples: Any) -> np.ndarray:
+        """Exact Allan variance (stationary differences) of the model at m = ``tau_samples`` samples."""
+        sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
+        total = np.zeros(len(sizes))
+        for term, variance in self.terms().items():
+            total += variance * term_allan_variance(term, sizes, self.flicker_d, self.ar_coefficients)
+        return total
+
+    # --- the field's units (IEEE Std 952) -------------------------------------------------------
+    def angle_random_walk(self) -> float:
+        """N = √(σ_WN²/f_s) in rad/√s."""
+        return units.angle_random_walk_from_white_variance(self.white_variance, self.sample_rate)
+
+    def angle_random_walk_deg_per_sqrt_hour(self) -> float:
+        """Angle random walk in °/√h."""
+        return units.to_deg_per_sqrt_hour(self.angle_random_walk())
+
+    def rate_random_walk(self) -> float:
+        """K = √(σ_q² f_s) in rad/s/√s."""
+        return units.rate_random_walk_from_increment_variance(self.rrw_variance, self.sample_rate)
+
+    def rate_random_walk_deg_per_hour_per_sqrt_hour(self) -> float:
+        """Rate random walk in °/h/√h."""
+        return units.to_deg_per_hour_per_sqrt_hour(self.rate_random_walk())
+
+    def bias_deg_per_hour(self) -> float:
+        """The bias in °/h."""
+        return units.rad_per_s_to_deg_per_h(self.bias)
+
+    # --- the paper's units (TIM 2014 Table III) -------------------------------------------------
+    def white_variance_at_one_second(self) -> float:
+        """σ_WN² (τ = 1 s) of TIM 2014 Table III: the variance of a 1-s average, σ_WN²/f_s ((rad/s)²)."""
+        return self.white_variance / self.sample_rate
+
+    def rrw_variance_per_second(self) -> float:
+        """σ_q² of TIM 2014 Table III in (rad/s)²/s: the increment variance per second, σ_q² f_s."""
+        return self.rrw_variance * self.sample_rate
+
+    def minimum_allan_deviation(self, length: int) -> tuple[float, float]:
+        """(min σ_A, τ at the minimum) of this model over τ up to a third of a record of ``length`` samples.
+
+        Searched on a log grid of 8 points per octave of the stationary Allan variance.
+        """
+        key = (  # ``extra`` is shared by models made with dataclasses.replace: key on every parameter
+            "minimum",
+            int(length),
+            self.white_variance,
+            self.rrw_variance,
+            self.flicker_variance,
+            self.flicker_d,
+            self.quantization,
+            self.ar_variance,
+            self.ar_coefficients,
+            self.sample_rate,
+        )
+        if key not in self.extra:
+            top = max(1, int(length) // 3)
+            count = 8 * max(1, int(math.log2(top)) + 1)
+            grid = np.unique(np.rint(np.geomspace(1, top, count)).astype(np.int64))
+            values = self.allan_variance(grid)
+            best = int(np.argmin(values))
+            self.extra[key] = (math.sqrt(float(values[best])), float(grid[best] / self.sample_rate))
+        return self.extra[key]
+
+    def bias_instability(self, length: int) -> float:
+        """Bias instability B = min σ_A / 0.664 (rad/s) of the model's Allan curve (IEEE Std 952)."""
+        return units.bias_instability_from_allan_minimum(self.minimum_allan_deviation(length)[0])
+
+
+_FIELD = {
+    "white": "white_variance",
+    "rrw": "rrw_variance",
+    "flicker": "flicker_variance",
+    "quantization": "quantization",
+    "ar": "ar_variance",
+}
+
+
+def _slowest_root(coefficients: tuple[float, ...]) -> float:
+    """ρ = the largest |λ| over the roots λ of z^p − Σ φ_j z^{p−j} (stationary when ρ < 1)."""
+    return float(np.max(np.abs(np.roots(np.concatenate(([1.0], -np.asarray(coefficients)))))))
+
+
+@functools.lru_cache(maxsize=64)
+def ar_autocovariance(coefficients: tuple[float, ...], lags: int) -> np.ndarray:
+    """γ(k), k = 0 … lags − 1, of the AR(p) process at unit innovation variance (read-only array).
+
+    γ(0 … p) solve the Yule–Walker equations γ(k) − Σ_j φ_j γ(|k − j|) = [k = 0]; beyond, the exact
+    recursion γ(k) = Σ_j φ_j γ(k − j). Lags where ρ^k < ``AR_TRUNCATION`` are set to 0 (ρ the slowest
+    root; the neglected values are below that bound times a constant of the roots).
+    """
+    phi = np.asarray(coefficients, dtype=np.float64)
+    p = len(phi)
+    gamma = np.zeros(max(lags, p + 1))
+    if p == 0:
+        gamma[0] = 1.0
+        return _frozen(gamma[:lags])
+    system = np.eye(p + 1)
+    for k in range(p + 1):
+        for j in range(1, p + 1):
+            system[k, abs(k - j)] -= phi[j - 1]
+    right = np.zeros(p + 1)
+    right[0] = 1.0
+    gamma[: p + 1] = linalg.solve(system, right)
+    rho = _slowest_root(coefficients)
+    reach = lags if rho == 0 else min(lags, p + 1 + int(math.log(AR_TRUNCATION) / math.log(rho)) + 1)
+    for k in range(p + 1, reach):
+        gamma[k] = float(np.dot(phi, gamma[k - p : k][::-1]))
+    return _frozen(gamma[:lags])
+
+
+def _frozen(array: np.ndarray) -> np.ndarray:
+    array.setflags(write=False)
+    return array
+
+
+@functools.lru_cache(maxsize=8)
+def _flicker_increment_autocovariance(d: float, lags: int) -> np.ndarray:
+    """ARFIMA(0, d − 1, 0) autocovariance at unit σ_w²: γ(0) = Γ(3 − 2d)/Γ(2 − d)², ratio (k−2+d)/(k+1−d)."""
+    gamma = np.empty(lags)
+    gamma[0] = math.exp(math.lgamma(3.0 - 2.0 * d) - 2.0 * math.lgamma(2.0 - d))
+    k = np.arange(1, lags, dtype=np.float64)
+    gamma[1:] = gamma[0] * np.cumprod((k - 2.0 + d) / (k + 1.0 - d))
+    return _frozen(gamma)
+
+
+def increment_autocovariance(
+    term: str, lags: int, flicker_d: float = 0.5, ar_coefficients: tuple[float, ...] = ()
+) -> np.ndarray:
+    """γ_z(k), k = 0 … lags − 1, of the increments z_t = y_t − y_{t−1} of one term at unit driving variance.
+
+    (Quantization at unit variance of its rate f_s·a_t.) See the module text for each term.
+    """
+    gamma = np.zeros(lags)
+    if term == "white":
+        gamma[:2] = (2.0, -1.0)[: min(lags, 2)]
+    elif term == "rrw":
+        gamma[:1] = 1.0
+    elif term == "quantization":
+        gamma[:3] = (6.0, -4.0, 1.0)[: min(lags, 3)]
+    elif term == "flicker":
+        gamma[:] = _flicker_increment_autocovariance(float(flicker_d), lags)
+    elif term == "ar":
+        ar = ar_autocovariance(tuple(float(c) for c in ar_coefficients), lags + 1)
+        previous = np.concatenate((ar[1:2], ar[: lags - 1]))  # γ(k − 1), with γ(−1) = γ(1)
+        gamma[:] = 2.0 * ar[:lags] - previous - ar[1 : lags + 1]
+    else:
+        raise ValueError(f"term={term!r}: must be one of {TERMS}")
+    return gamma
+
+
+def spectral_density(
+    term: str, omega: np.ndarray, flicker_d: float = 0.5, ar_coefficients: tuple[float, ...] = ()
+) -> np.ndarray:
+    """Spectral density of one term's rate at angular frequency ω (rad/sample), unit driving variance.
+
+    white 1; rate random walk 1/|1 − e^{−iω}|² (eq. (2)); 1/f |1 − e^{−iω}|^{−2d} (eq. (3));
+    quantization |1 − e^{−iω}|²; AR 1/|1 − Σ φ_j e^{−ijω}|².
+    """
+    difference = 4.0 * np.sin(np.asarray(omega) / 2.0) ** 2  # |1 − e^{−iω}|²
+    with np.errstate(divide="ignore"):
+        if term == "white":
+            return np.ones_like(difference)
+        if term == "rrw":
+            return 1.0 / difference
+        if term == "flicker":
+            return difference ** (-float(flicker_d))
+        if term == "quantization":
+            return difference
+    if term == "ar":
+        j = np.arange(1, len(ar_coefficients) + 1)
+        transfer = 1.0 - np.exp(-1j * np.outer(omega, j)) @ np.asarray(ar_coefficients, dtype=np.float64)
+        return 1.0 / np.abs(transfer) ** 2
+    raise ValueError(f"term={term!r}: must be one of {TERMS}")
+
+
+def variogram(increment_covariance: np.ndarray) -> np.ndarray:
+    """D(h) = Σ_{|k|<h} (h − |k|) γ_z(k), h = 0 … len(γ_z): each step adds γ_z(0) + 2 Σ_{0<k<h} γ_z(k)."""
+    steps = increment_covariance[0] + 2.0 * np.concatenate(([0.0], np.cumsum(increment_covariance[1:])))
+    return np.concatenate(([0.0], np.cumsum(steps)))
+
+
+def allan_variance_from_increments(increment_covariance: np.ndarray, sizes: np.ndarray) -> np.ndarray:
+    """σ_A²(m) = Σ_{|j|<m} (m − |j|) [D(|m + j|) − D(|j|)] / (2m²) from γ_z(0 … 2m − 1) (module text)."""
+    D = variogram(increment_covariance[: 2 * int(np.max(sizes))])
+    result = np.empty(len(sizes))
+    for i, m in enumerate(int(value) for value in sizes):
+        j = np.arange(-(m - 1), m)
+        weights = (m - np.abs(j)).astype(np.float64)
+        result[i] = float(np.dot(weights, D[np.abs(m + j)] - D[np.abs(j)])) / (2.0 * m * m)
+    return result
+
+
+def term_allan_variance(
+    term: str, sizes: Any, flicker_d: float = 0.5, ar_coefficients: tuple[float, ...] = ()
+) -> np.ndarray:
+    """Exact Allan variance of one term (unit driving variance; quantization with f_s Q = 1) at m = sizes.
+
+    White, rate random walk and quantization from the SymPy closed forms; 1/f and AR by the exact finite
+    variogram sum of the module text, O(m) per τ.
+    """
+    m = np.atleast_1d(np.asarray(sizes, dtype=np.int64))
+    if term == "white":
+        return np.asarray(_white_numeric(1.0, m.astype(np.float64)), dtype=np.float64)
+    if term == "rrw":
+        return np.asarray(_rrw_numeric(1.0, m.astype(np.float64)), dtype=np.float64)
+    if term == "quantization":  # Q = Δt: f_s Q = 1
+        return np.asarray(_quantization_numeric(1.0, m.astype(np.float64), 1.0), dtype=np.float64)
+    if term in ("flicker", "ar"):
+        lags = 2 * int(np.max(m))
+        gamma = increment_autocovariance(term, lags, flicker_d, ar_coefficients)
+        return allan_variance_from_increments(gamma, m)
+    raise ValueError(f"term={term!r}: must be one of {TERMS}")

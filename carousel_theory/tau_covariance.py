@@ -1,0 +1,363 @@
+"""Covariance of Allan-variance estimates across τ, without sums over the record.
+
+Setting. The overlapping estimate at m samples per cluster is σ̂²(m) = Σ_{s<K} d_s²/(2m²K), K = n − 2m + 1,
+with d_s = Σ_{k<m} (y_{s+m+k} − y_{s+k}); the non-overlapping one keeps every m-th start (K = ⌊n/m⌋ − 1,
+TIM 2014 eq. (20)). With z_t = y_t − y_{t−1}, d_s = Σ_k g_m[k] z_{s+1+k}, g_m the triangle 1, 2, …, m, …, 1
+(the coefficients of B_m(x)², B_m(x) = 1 + x + … + x^{m−1}). For Gaussian noise
+
+    Cov(σ̂²_i, σ̂²_j) = Σ_δ N_ij(δ) c_ij(δ)² / (2 m_i² m_j² K_i K_j),
+    c_ij(δ) = Cov(d_{i,s}, d_{j,s+δ}) = Σ_u W_ij(u) γ_z(δ + u),  W_ij(u) = Σ_k g_i[k] g_j[k + u],
+
+N_ij(δ) the number of pairs of starts at offset δ (for both estimators) and γ_z the increment
+autocovariance of :mod:`carousel_theory.noise_model`. W_ij has the generating function
+x^{2−2m_i}(1 − x^{m_i})²(1 − x^{m_j})²/(1 − x)⁴, so it is a sum of nine cubic ramps
+W_ij(u) = Σ_{α,β∈{0,1,2}} w_α w_β R₃(u − p_αβ), w = (1, −2, 1), p_αβ = 2 − 2m_i + αm_i + βm_j,
+R₃(x) = C(x + 3, 3) for x ≥ 0 and 0 below.
+
+Exact closed form (white, rate random walk, quantization; overlapping estimator)
+    γ_z has at most five taps, and the differences of R₃ give c_ij in closed form: rate random walk
+    W_ij(−δ) (piecewise cubic), white −Σ w_αβ max(2 − p_αβ − δ, 0) (piecewise linear, since the central
+    second difference of R₃(x) is max(x + 2, 0)), quantization Σ w_αβ [δ = 2 − p_αβ] (nine spikes, the
+    fourth difference). N_ij is piecewise linear with breaks at −(K_i − 1), 0, K_j − K_i, K_j. So
+    N_ij c_ij² is a polynomial of degree ≤ 7 on each of at most ~25 pieces between sorted breakpoints, and
+    each piece is summed exactly by the Newton series Σ_{t<L} P(t) = Σ_{k≤7} Δ^k P(0) C(L, k + 1) in
+    integers. The cost does not depend on n or m; the result is exact (Python integers), and for
+    n ≥ 2(m_i + m_j) it is A_ij + B_ij n (cached per (m_i, m_j), so a loop that refits pays once).
+
+Exact finite sums (1/f, AR, and the non-overlapping estimator)
+    c_ij(δ) is computed on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is
+    correlated with the triangle g_j once per τ_j (one FFT), and g_i = B_{m_i}⋆B_{m_i} is applied to
+    that as two moving sums. T: for AR, the lag beyond which the geometric envelope is below
+    :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j).
+    The 1/f tail beyond the window is bounded, not dropped silently: for k ≥ 1, γ_z(k) < 0 and
+    |γ_z(k)| decreases, with |γ_z(k)| ≤ |γ_z(V)| ((V + 2 − d)/(k + 2 − d))^{3−2d} (from the ratio
+    (k − 2 + d)/(k + 1 − d) = 1 − (3 − 2d)/(k + 1 − d) ≤ exp(−(3 − 2d)/(k + 1 − d))), so
+    Σ_{k≥V} γ_z(k)² ≤ γ_z(V)² (1 + (V + 2 − d)/(5 − 4d)); with W ≥ 0 and Σ W = m_i² m_j², the neglected
+    part of Σ N c² is at most 2 K (m_i² m_j²)² Σ_{k≥V} γ_z(k)², V the first lag outside the window.
+    :attr:`TauCovariance.truncation_bound` reports it per entry (0 where the result is exact).
+
+Equivalent degrees of freedom (Satterthwaite) come from the diagonal: ν_i = 2 E[σ̂²_i]² / Var σ̂²_i.
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import sympy as sp
+from scipy.signal import fftconvolve
+
+from carousel_theory import symbols
+from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
+
+__all__ = [
+    "FLICKER_REACH",
+    "WHITE_OVERLAPPING_ESTIMATE_VARIANCE",
+    "TauCovariance",
+    "allan_estimate_covariance",
+    "allan_estimate_variance",
+]
+
+#: The 1/f cross-covariance is summed over this many (m_i + m_j) lags beyond the filters' support; the
+#: rest is bounded (module text).
+FLICKER_REACH = 4
+_FINITE = ("white", "rrw", "quantization")
+
+_m, _K = symbols.cluster_size, symbols.difference_count
+#: Var σ̂²(m) of the overlapping estimator for white noise of variance σ_WN², K = n − 2m + 1 ≥ 2m
+#: differences (derived by summation in ``derivations/allan_variance_models.md`` §6).
+WHITE_OVERLAPPING_ESTIMATE_VARIANCE: sp.Expr = (
+    symbols.white_sample_variance**2 * (4 * _K * _m**2 + 5 * _K - 2 * _m**3 - _m) / (3 * _K**2 * _m**3)
+)
+_WEIGHTS = (1, -2, 1)
+
+
+@dataclass(frozen=True)
+class TauCovariance:
+    """Covariance of the Allan variance estimates at ``sizes`` for Gaussian noise of a model.
+
+    Attributes
+    ----------
+    sizes : ndarray of int
+        m at each τ.
+    covariance : ndarray
+        Cov(σ̂²_i, σ̂²_j).
+    allan_variance : ndarray
+        The model's (stationary) Allan variance at each m.
+    edf : ndarray
+        Equivalent degrees of freedom 2 σ_A⁴ / Var σ̂².
+    truncation_bound : ndarray
+        Bound on the part of each entry left out by a truncated 1/f sum (0 where exact).
+    estimator : str
+        "overlapping" or "non-overlapping".
+    """
+
+    sizes: np.ndarray
+    covariance: np.ndarray
+    allan_variance: np.ndarray
+    edf: np.ndarray
+    truncation_bound: np.ndarray
+    estimator: str
+
+
+# --- the exact integer engine ---------------------------------------------------------------------
+
+
+def _ramp_positions(m_i: int, m_j: int) -> list[tuple[int, int]]:
+    """(q, w) with W_ij(−δ) = Σ w R₃(q − δ): q = −p_αβ, merged where positions coincide."""
+    merged: dict[int, int] = {}
+    for alpha, w_alpha in enumerate(_WEIGHTS):
+        for beta, w_beta in enumerate(_WEIGHTS):
+            q = -(2 - 2 * m_i + alpha * m_i + beta * m_j)
+            merged[q] = merged.get(q, 0) + w_alpha * w_beta
+    return [(q, w) for q, w in sorted(merged.items()) if w]
+
+
+def _cross_values(ramps: list[tuple[int, int]], delta: int) -> tuple[int, int]:
+    """(c_white, c_rrw) at δ for unit variances, exact integers."""
+    white = rrw = 0
+    for q, w in ramps:
+        x = q - delta
+        if x >= -1:
+            white -= w * (x + 2)
+            if x >= 0:
+                rrw += w * ((x + 1) * (x + 2) * (x + 3) // 6)
+    return white, rrw
+
+
+def _pair_count(delta: int, K_i: int, K_j: int) -> int:
+    """N_ij(δ): starts s < K_i, r < K_j with r − s = δ (overlapping)."""
+    return max(0, min(K_i - 1, K_j - 1 - delta) - max(0, -delta) + 1)
+
+
+def _piece_sums(ramps: list[tuple[int, int]], start: int, stop: int, K_i: int, K_j: int) -> np.ndarray:
+    """Σ_{δ=start}^{stop−1} N c_a c_b for (a, b) = (W, W), (W, R), (R, R), exactly (one polynomial piece)."""
+    length = stop - start
+    points = min(length, 8)
+    values = [[0] * points for _ in range(3)]
+    for t in range(points):
+        white, rrw = _cross_values(ramps, start + t)
+        count = _pair_count(start + t, K_i, K_j)
+        values[0][t], values[1][t], values[2][t] = (
+            count * white * white,
+            count * white * rrw,
+            count * rrw * rrw,
+        )
+    if length <= 8:
+        return np.array([sum(row) for row in values], dtype=object)
+    sums = []
+    for row in values:  # Newton series: Σ_{t<L} P(t) = Σ_k Δ^k P(0) C(L, k + 1), P of degree ≤ 7
+        total, differences = 0, list(row)
+        for k in range(8):
+            total += differences[0] * math.comb(length, k + 1)
+            differences = [b - a for a, b in itertools.pairwise(differences)]
+        sums.append(total)
+    return np.array(sums, dtype=object)
+
+
+@functools.lru_cache(maxsize=4096)
+def _finite_gram(m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[int, int, int, int, int, int]:
+    """Exact Σ_δ N c_a c_b for the pairs WW, WR, RR, QQ, QW, QR of unit-variance finite terms."""
+    ramps = _ramp_positions(m_i, m_j)
+    low = max(-(K_i - 1), -2 * m_j - 2)
+    high = min(K_j - 1, max(q for q, _ in ramps) + 2)
+    cuts = {low, high + 1, 0, K_j - K_i, -(K_i - 1), K_j}
+    for q, _ in ramps:
+        cuts.update((q + 1, q + 2))
+    edges = sorted(c for c in cuts if low <= c <= high + 1)
+    total = np.zeros(3, dtype=object)
+    for start, stop in itertools.pairwise(edges):
+        total = total + _piece_sums(ramps, start, stop, K_i, K_j)
+    spikes: dict[int, int] = {}
+    for q, w in ramps:  # quantization: c_Q(δ) = Σ w [δ = q + 2]
+        spikes[q + 2] = spikes.get(q + 2, 0) + w
+    quantization = [0, 0, 0]
+    for delta, weight in spikes.items():
+        count = _pair_count(delta, K_i, K_j)
+        white, rrw = _cross_values(ramps, delta)
+        quantization[0] += count * weight * weight
+        quantization[1] += count * weight * white
+        quantization[2] += count * weight * rrw
+    return (int(total[0]), int(total[1]), int(total[2]), quantization[0], quantization[1], quantization[2])
+
+
+def _finite_sum(model: NoiseModel, m_i: int, m_j: int, K_i: int, K_j: int) -> float:
+    """Σ_δ N c² of the model's white, rate random walk and quantization terms (overlapping), exact sums."""
+    terms = model.terms()
+    white, rrw, quantization = (terms.get(name, 0.0) for name in _FINITE)
+    if not (white or rrw or quantization):
+        return 0.0
+    ww, wr, rr, qq, qw, qr = _finite_gram(m_i, m_j, K_i, K_j)
+    return float(
+        white * white * ww
+        + 2 * white * rrw * wr
+        + rrw * rrw * rr
+        + quantization * quantization * qq
+        + 2 * quantization * white * qw
+        + 2 * quantization * rrw * qr
+    )
+
+
+# --- the finite lag sums (1/f, AR, non-overlapping) ---------------------------------------------------
+
+
+def _triangle(m: int) -> np.ndarray:
+    return np.minimum(np.arange(1, 2 * m), np.arange(2 * m - 1, 0, -1)).astype(np.float64)
+
+
+def _lag_window(model: NoiseModel, m_i: int, m_j: int) -> int:
+    """How far beyond the filters' support c_ij is summed (module text)."""
+    terms = model.terms()
+    reach = 0
+    if "flicker" in terms:
+        reach = FLICKER_REACH * (m_i + m_j) + 64
+    if "ar" in terms:
+        rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -np.asarray(model.ar_coefficients)))))))
+        if rho > 0:
+            reach = max(reach, int(math.log(AR_TRUNCATION) / math.log(rho)) + len(model.ar_coefficients) + 2)
+    return reach
+
+
+def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, count: int) -> float:
+    """Bound on Σ N c² outside the δ window: 2 K (m_i² m_j²)² Σ_{k≥V} γ_z(k)² (module text)."""
+    model = memory.model
+    if "flicker" not in model.terms():
+        return 0.0
+    d = float(model.flicker_d)
+    V = max(1, inner)
+    gamma_V = abs(float(model.flicker_variance * memory.flicker_gamma[V]))
+    tail = gamma_V**2 * (1.0 + (V + 2.0 - d) / (5.0 - 4.0 * d))
+    return 2.0 * count * (float(m_i) ** 2 * float(m_j) ** 2) ** 2 * tail
+
+
+class _LongMemory:
+    """c_ij(δ) = Σ_k g_i[k] A_j(δ − k) with A_j = γ_z correlated with g_j once per j (one FFT), and g_i,
+    the triangle B_{m_i}⋆B_{m_i}, applied as two moving sums (cumulative sums): no FFT per pair."""
+
+    def __init__(self, model: NoiseModel, sizes: np.ndarray, length: int) -> None:
+        self.model = model
+        self.length = int(length)
+        largest = int(np.max(sizes))
+        self.reach = {int(m): _lag_window(model, int(m), int(m)) for m in sizes}
+        span = 8 * largest + max(self.reach.values()) + 8
+        self.gamma = model.increment_autocovariance(span)
+        flicker = "flicker" in model.terms()
+        self.flicker_gamma = increment_autocovariance("flicker", span if flicker else 1, model.flicker_d)
+        self.j: int | None = None
+        self.low = 0
+        self.correlated = np.zeros(0)
+
+    def _prepare(self, m_j: int) -> None:
+        """A_j(x) for x from low = −4m_j − reach_jj to 2m_j + reach_jj."""
+        if self.j == m_j:
+            return
+        reach = self.reach[m_j]
+        # No offset δ between two differences exceeds the record; A_j is needed down to δ − 2m_i + 2.
+        self.low = max(-4 * m_j - reach, -self.length - 2 * m_j)
+        high = min(2 * m_j + reach, self.length)
+        lags = np.abs(np.arange(self.low, high + 2 * m_j - 1))
+        self.correlated = fftconvolve(self.gamma[lags], _triangle(m_j), mode="valid")
+        self.j = m_j
+
+    def cross_covariance(self, m_i: int, m_j: int, first: int, last: int) -> np.ndarray:
+        """c_ij(δ) for δ = first … last (inside the window prepared for m_j)."""
+        self._prepare(m_j)
+        start = first - 2 * m_i + 2 - self.low  # A_j from δ − (2m_i − 2)
+        values = self.correlated[start : last - self.low + 1]
+        for _ in range(2):  # two moving sums of length m_i
+            cumulative = np.concatenate(([0.0], np.cumsum(values)))
+            values = cumulative[m_i:] - cumulative[:-m_i]
+        return values
+
+
+def _lag_sum(
+    memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int, estimator: str
+) -> tuple[float, float]:
+    """(Σ N c², bound on the neglected tail) by the finite lag sum over a window of δ."""
+    reach = _lag_window(memory.model, m_i, m_j)
+    spacing = 1 if estimator == "overlapping" else m_i
+    low = max(-(K_i - 1) * spacing, -2 * m_j - reach)
+    high = min((K_j - 1) * (1 if estimator == "overlapping" else m_j), 2 * m_i + reach)
+    if estimator == "overlapping":
+        deltas = np.arange(low, high + 1)
+        counts = np.minimum(K_i - 1, K_j - 1 - deltas) - np.maximum(0, -deltas) + 1
+    else:  # δ = m_j b − m_i a = m_i t when m_i divides m_j
+        ratio = m_j // m_i
+        t = np.arange(-(-low // m_i), high // m_i + 1)
+        deltas = t * m_i
+        first = np.maximum(0, -((-t) // ratio))
+        last = np.minimum(K_j - 1, (K_i - 1 + t) // ratio)
+        counts = last - first + 1
+    counts = np.maximum(counts, 0).astype(np.float64)
+    dense = memory.cross_covariance(m_i, m_j, int(deltas[0]), int(deltas[-1]))
+    c = dense if estimator == "overlapping" else dense[deltas - deltas[0]]
+    bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
+    return float(np.dot(counts, c * c)), bound
+
+
+# --- public ---------------------------------------------------------------------------------------
+
+
+def _terms_count(sizes: np.ndarray, length: int, estimator: str) -> np.ndarray:
+    return length - 2 * sizes + 1 if estimator == "overlapping" else length // sizes - 1
+
+
+def allan_estimate_covariance(
+    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping"
+) -> TauCovariance:
+    """Covariance of the Allan variance estimates at m = ``tau_samples`` in a record of ``length`` samples.
+
+    Exact in closed form for white, rate random walk and quantization with the overlapping estimator;
+    exact finite lag sums for AR and the non-overlapping estimator; 1/f by a finite lag sum with the
+    tail bounded (module text). For the non-overlapping estimator every m must divide the larger ones.
+    """
+    sizes = np.asarray(tau_samples, dtype=np.int64)
+    if estimator not in ("overlapping", "non-overlapping"):
+        raise ValueError(f"estimator={estimator!r}: must be 'overlapping' or 'non-overlapping'")
+    if not model.terms():
+        raise ValueError(f"model={model!r}: the model has no noise component")
+    if estimator == "non-overlapping" and any(int(b) % int(a) for a in sizes for b in sizes if b >= a):
+        raise ValueError(
+            f"tau_samples={sizes!r}: for the non-overlapping estimator each cluster size must divide the "
+            "larger ones (use octave τ)"
+        )
+    terms = _terms_count(sizes, int(length), estimator)
+    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
+    memory = _LongMemory(model, sizes, int(length)) if long_terms or estimator != "overlapping" else None
+    count = len(sizes)
+    covariance, bound = np.empty((count, count)), np.zeros((count, count))
+    for j in range(count):  # column by column: A_j is prepared once per j
+        for i in range(j + 1):
+            m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
+            if memory is None:
+                total, tail = _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
+            else:
+                total, tail = _lag_sum(memory, m_i, m_j, K_i, K_j, estimator)
+            scale = 2.0 * float(m_i) ** 2 * float(m_j) ** 2 * K_i * K_j
+            covariance[i, j] = covariance[j, i] = total / scale
+            bound[i, j] = bound[j, i] = tail / scale
+    allan = model.allan_variance(sizes)
+    edf = 2.0 * allan**2 / np.diag(covariance)
+    return TauCovariance(sizes, covariance, allan, edf, bound, estimator)
+
+
+def allan_estimate_variance(
+    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping"
+) -> np.ndarray:
+    """Var σ̂²(m) at each m (the diagonal of :func:`allan_estimate_covariance`, without the other pairs)."""
+    sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
+    terms = _terms_count(sizes, int(length), estimator)
+    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
+    memory = _LongMemory(model, sizes, int(length)) if long_terms or estimator != "overlapping" else None
+    result = np.empty(len(sizes))
+    for i, (m, K) in enumerate(zip(sizes.tolist(), terms.tolist(), strict=True)):
+        if memory is None:
+            total = _finite_sum(model, m, m, K, K)
+        else:
+            total = _lag_sum(memory, m, m, K, K, estimator)[0]
+        result[i] = total / (2.0 * float(m) ** 4 * K * K)
+    return result
