@@ -3,6 +3,7 @@ file, a worker killed in the middle, a task time-out, a resumed run, and the com
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import signal
@@ -20,7 +21,7 @@ from carousel_theory.batch.fleet import FleetJob, run_fleet
 from carousel_theory.batch.report import effect_frequencies, find_outliers, robust_z_scores, write_report
 from carousel_theory.batch.rows import BatchRow, error_row
 from carousel_theory.batch.store import read_table, write_atomically, write_table
-from carousel_theory.batch.tasks import TaskOptions, check_options
+from carousel_theory.batch.tasks import TASKS, TaskOptions, check_options
 from carousel_theory.cli import main
 from carousel_theory.data import load_recording
 from carousel_theory.fitting import fit_noise_model
@@ -278,7 +279,10 @@ def test_a_table_round_trips_through_parquet(tmp_path):
 
 
 INVALID_CALLS = [
-    ("unknown task", lambda: _job([], "out", task="design"), "task='design'"),
+    ("unknown task", lambda: _job([], "out", task="spectrum"), "task='spectrum'"),
+    ("design without latitude", lambda: check_options("design", TaskOptions()), "latitude=None"),
+    ("design at the pole", lambda: check_options("design", TaskOptions(latitude=90.0)), "latitude=90.0"),
+    ("design scheme", lambda: check_options("design", TaskOptions(latitude=60.0, schemes=("spin",))), "spin"),
     ("loop split per axis", lambda: _job([], "out", task="loop", per_axis=True), "per_axis=True"),
     ("non-positive time-out", lambda: _job([], "out", task_timeout=0.0), "task_timeout=0.0"),
     ("no inputs", lambda: discover_recordings([]), "inputs=[]"),
@@ -300,3 +304,24 @@ def test_invalid_calls(call, message):
 def test_missing_input_names_the_pattern(tmp_path):
     with pytest.raises(FileNotFoundError, match="nothing_here"):
         discover_recordings([str(tmp_path / "nothing_here" / "*.csv")])
+
+
+def test_design_task_agrees_with_the_fit_and_design_commands(fleet, tmp_path, capsys):
+    """The fleet's design row against the two single-file commands chained by hand: ``fit --json`` into
+    ``design --noise``."""
+    path = str(fleet / "unit_a.csv")
+    options = TaskOptions(latitude=61.5, design_durations=(20.0,), schemes=("static", "carousel:N=200"))
+    check_options("design", options)
+    rows = TASKS["design"](path, options, None)
+    assert [row.axis for row in rows] == ["wx", "wy"]
+    assert main(["fit", path, "--json"]) == 0
+    noise = tmp_path / "fit.json"
+    noise.write_text(capsys.readouterr().out, encoding="utf-8")
+    command = ["design", "--noise", str(noise), "--latitude", "61.5", "--duration", "20"]
+    command += ["--scheme", "static", "--scheme", "carousel:N=200", "--json"]
+    assert main(command) == 0
+    design = json.loads(capsys.readouterr().out)
+    best = next(s for s in design["schemes"] if s["scheme"] == design["recommended"])
+    for row in rows:
+        assert row.design_scheme == design["recommended"]
+        assert row.design_heading_sigma_deg == pytest.approx(best["heading_sigma_deg"], rel=1e-9)
