@@ -30,8 +30,9 @@ from carousel_theory.simulate import simulate_recording, write_recording
 SMALL_SAMPLES = 4000
 #: A record whose fit lasts about a second: long enough to kill its worker in the middle of the task.
 MEDIUM_SAMPLES = 60_000
-#: A record whose fit lasts well over the time-out of the test (it is cancelled, never finished).
-SLOW_SAMPLES = 240_000
+#: A record whose closed loop lasts well over the time-out of the test (it is cancelled, never finished):
+#: 10,000 s at 100 Hz, where the loop takes seconds even on a quiet machine.
+SLOW_SAMPLES = 1_000_000
 
 
 def _write(path, samples, seed, axes=("wx", "wy")):
@@ -67,7 +68,7 @@ def medium_file(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def slow_file(tmp_path_factory):
-    return _write(tmp_path_factory.mktemp("slow") / "slow.npz", SLOW_SAMPLES, 9, axes=("wx",))
+    return _write(tmp_path_factory.mktemp("slow") / "slow.npz", SLOW_SAMPLES, 9)
 
 
 def _same(first: BatchRow, second: BatchRow) -> bool:
@@ -200,7 +201,8 @@ def test_a_worker_killed_mid_task_is_retried_and_the_fleet_completes(client, fle
 
 
 def test_a_task_over_the_time_out_becomes_an_error_row(client, slow_file, tmp_path):
-    outcome = run_fleet(client, _job([slow_file], tmp_path, task_timeout=2.0), show_progress=False)
+    job = _job([slow_file], tmp_path, task="loop", task_timeout=2.0)
+    outcome = run_fleet(client, job, show_progress=False)
     (row,) = outcome.rows
     assert (row.status, row.error_kind, row.axis) == ("error", "timeout", "")
     assert "--task-timeout=2 s" in row.error and row.content_hash == content_hash(slow_file)
