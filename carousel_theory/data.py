@@ -9,8 +9,9 @@ need a uniform sample rate (the Allan variance) refuse it. Files are only ever o
 
 Long recordings (12 h at 1 kHz is 4.3·10⁷ rows)
     CSV is parsed by ``pyarrow.csv`` when pyarrow is installed (the ``data`` extra; the core needs only
-    NumPy): its streaming reader parses blocks of 4 MB on all cores (larger blocks in flight cost memory) straight into float64 columns,
-    without holding the text in memory, about ten times faster than ``numpy.loadtxt``; the columns are
+    NumPy): its streaming reader parses blocks of 4 MB on all cores (larger blocks in flight cost
+    memory) straight into float64 columns, without holding the text in memory, about ten times
+    faster than ``numpy.loadtxt``; the columns are
     joined one at a time, so the peak is about one extra column; pandas' C engine is as fast on one
     core but names neither the row nor the column of a bad value. Without pyarrow, ``numpy.loadtxt`` is
     used. When the fast parser refuses a file, the file is scanned once more, line by line, to name the
@@ -363,12 +364,17 @@ def _read_csv(path: Path) -> dict[str, np.ndarray]:
             path,
             read_options=arrow_csv.ReadOptions(skip_rows=1, column_names=header, block_size=1 << 22),
             parse_options=arrow_csv.ParseOptions(delimiter=delimiter),
-            convert_options=arrow_csv.ConvertOptions(column_types=dict.fromkeys(header, arrow.float64())),
+            convert_options=arrow_csv.ConvertOptions(
+                column_types=dict.fromkeys(header, arrow.float64()), null_values=[""]  # "nan" stays NaN
+            ),
             memory_pool=arrow.system_memory_pool(),  # freed blocks go back to the system at once
         )
+        offset = 0
         for batch in reader:  # batch by batch: the text is never held whole, and Arrow's buffers are freed
             for index, name in enumerate(header):
+                _refuse_empty_fields(path, name, batch.column(index), offset)
                 chunks[name].append(batch.column(index).to_numpy(zero_copy_only=False))
+            offset += batch.num_rows
     except (arrow.ArrowInvalid, UnicodeDecodeError) as error:
         where = _locate_bad_field(path, header, delimiter, error)
         raise ValueError(f"{path}: unreadable CSV data ({where})") from None
@@ -379,6 +385,16 @@ def _read_csv(path: Path) -> dict[str, np.ndarray]:
         columns[name] = np.concatenate(chunks.pop(name))
         columns[name].setflags(write=False)  # ours alone: read-only, so rad/s columns need no copy
     return columns
+
+
+def _refuse_empty_fields(path: Path, name: str, column: Any, offset: int) -> None:
+    """An empty field parses as null: name its row (a file cut in the middle of a row ends this way)."""
+    if column.null_count:
+        first = offset + int(np.flatnonzero(column.is_null().to_numpy(zero_copy_only=False))[0])
+        raise ValueError(
+            f"{path}: unreadable CSV data (row {first} (counted from 0, header excluded), column {name!r} "
+            "is empty: a row with a missing value, or a file cut off in the middle of its last row)"
+        )
 
 
 def _locate_bad_field(path: Path, header: list[str], delimiter: str, error: Exception) -> str:
