@@ -37,12 +37,22 @@ import numpy as np
 from carousel_theory._validation import check_positive_real
 from carousel_theory.units import rate_to_rad_per_s
 
-__all__ = ["Recording", "load_recording", "recording_from_arrays"]
+__all__ = ["MAX_VALUES", "TIME_UNITS", "Recording", "load_recording", "recording_from_arrays"]
 
 #: Relative spread of the time steps tolerated as "uniform" (clock jitter of float timestamps).
 UNIFORM_TOLERANCE = 1e-6
 #: A time step longer than this many nominal steps is reported as a gap.
 GAP_FACTOR = 1.5
+#: Most values (all columns together) a reader expands into memory unless the caller raises the limit
+#: (``max_values=``, ``--max-values``): 10⁹ values are 8 GB as float64, 12 h at 1 kHz of 23 columns.
+MAX_VALUES = 10**9
+#: Seconds per unit of a numeric time column (``time_unit=``, ``--time-unit``).
+TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
+#: Bytes of a CSV file checked for binary content (NUL bytes, invalid UTF-8) before it is parsed; the
+#: header row must end within them.
+BINARY_CHECK_BYTES = 1 << 16
+#: Longest line the scan that names a bad CSV field reads; a longer one is refused, not held in memory.
+MAX_LINE_BYTES = 1 << 20
 
 _TIME_NAMES = ("t", "time", "time_s", "timestamp")
 _TEMPERATURE_NAMES = ("temp", "temperature")
@@ -70,7 +80,11 @@ class Recording:
     source : str
         Where the data came from (a path or "arrays").
     uniform : bool
-        True when the timestamps are uniform within ``UNIFORM_TOLERANCE`` and have no gaps.
+        True when the timestamps are uniform within ``UNIFORM_TOLERANCE`` (or the resolution of the
+        timestamps, when coarser) and have no gaps.
+    time_origin : float
+        The first timestamp of the file in s (since the epoch for an epoch or ``datetime64`` clock);
+        ``time`` counts from it, so that ``time[0] == 0`` and its steps keep full precision.
     """
 
     time: np.ndarray
@@ -81,6 +95,7 @@ class Recording:
     source: str = "arrays"
     uniform: bool = True
     notes: tuple[str, ...] = field(default=())
+    time_origin: float = 0.0
 
     @property
     def duration(self) -> float:
@@ -100,6 +115,14 @@ class Recording:
 
 
 def _check_column(name: str, values: Any, source: str, expected_length: int | None) -> np.ndarray:
+    kind = getattr(values, "dtype", np.asarray(values).dtype).kind
+    if kind == "c":
+        raise TypeError(
+            f"{source}: column {name!r} holds complex numbers; it must hold real numbers (the imaginary "
+            "part would be lost; pass np.real(...) or np.abs(...) explicitly if that is what is meant)"
+        )
+    if kind in "mM":
+        raise TypeError(f"{source}: column {name!r} holds dates or durations; only a time column may")
     try:
         array = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError) as error:
@@ -120,19 +143,27 @@ def _check_column(name: str, values: Any, source: str, expected_length: int | No
     return array
 
 
-def _check_timing(time: np.ndarray, source: str, irregular: str) -> tuple[float, bool, tuple[str, ...]]:
-    """Return (sample rate, uniform, notes) or raise on non-monotonic / irregular timestamps."""
+def _check_timing(
+    time: np.ndarray, resolution: float, source: str, irregular: str
+) -> tuple[float, bool, tuple[str, ...]]:
+    """Return (sample rate, uniform, notes) or raise on non-monotonic / irregular timestamps.
+
+    ``time`` counts from the first timestamp (computed exactly, see :func:`_time_offsets`); a step
+    counts as uneven when it differs from the median step by more than ``UNIFORM_TOLERANCE`` relative
+    plus ``resolution``, the uncertainty of one step that the timestamps' own precision allows.
+    """
     steps = np.diff(time)
     bad = np.flatnonzero(steps <= 0)
     if bad.size:
         i = int(bad[0])
         raise ValueError(
             f"{source}: timestamps are not strictly increasing: t[{i}]={time[i]!r} then "
-            f"t[{i + 1}]={time[i + 1]!r} ({bad.size} such steps)"
+            f"t[{i + 1}]={time[i + 1]!r} s after the first ({bad.size} such steps)"
         )
     nominal = float(np.median(steps))
-    gaps = np.flatnonzero(steps > GAP_FACTOR * nominal)
-    uneven = np.flatnonzero(np.abs(steps - nominal) > UNIFORM_TOLERANCE * nominal)
+    tolerance = UNIFORM_TOLERANCE * nominal + resolution
+    gaps = np.flatnonzero(steps > GAP_FACTOR * nominal + resolution)
+    uneven = np.flatnonzero(np.abs(steps - nominal) > tolerance)
     notes: list[str] = []
     if gaps.size:
         i = int(gaps[0])
@@ -144,7 +175,8 @@ def _check_timing(time: np.ndarray, source: str, irregular: str) -> tuple[float,
         i = int(uneven[0])
         notes.append(
             f"non-uniform timestamps: {uneven.size} steps differ from the median step {nominal:.6g} s by "
-            f"more than {UNIFORM_TOLERANCE:g} relative; the first is t[{i + 1}]-t[{i}]={steps[i]:.6g} s"
+            f"more than {tolerance:.3g} s ({UNIFORM_TOLERANCE:g} relative + the timestamps' resolution "
+            f"{resolution:.3g} s); the first is t[{i + 1}]-t[{i}]={steps[i]:.6g} s"
         )
     if notes and irregular == "refuse":
         raise ValueError(
@@ -171,6 +203,7 @@ def recording_from_arrays(
     units: str = "rad/s",
     source: str = "arrays",
     irregular: str = "refuse",
+    time_unit: str | None = None,
 ) -> Recording:
     """Build a checked :class:`Recording` from arrays.
 
@@ -180,7 +213,9 @@ def recording_from_arrays(
         The gyro columns, in ``units``. A DataFrame contributes every column (use ``time=`` etc. for the
         others, or pass ``df[["wx", "wy"]]``).
     time : 1-D array, optional
-        Sample times in s. Without it, ``sample_rate`` is required and ``t = index / sample_rate``.
+        Sample times in ``time_unit`` (numbers) or ``datetime64``/``timedelta64`` values. The
+        recording's ``time`` counts from the first of them (kept as ``time_origin``). Without it,
+        ``sample_rate`` is required and ``t = index / sample_rate``.
     sample_rate : float, optional
         Samples per second. With ``time`` as well, the two must agree to 1e-6 relative.
     temperature, angle : 1-D arrays, optional
@@ -189,9 +224,14 @@ def recording_from_arrays(
         Units of ``rates``.
     irregular : {"refuse", "keep"}
         What to do with gaps or non-uniform timestamps.
+    time_unit : {"s", "ms", "us", "ns"}, optional
+        Unit of a numeric time column (default s), e.g. "ms" for epoch milliseconds. Not allowed with a
+        ``datetime64``/``timedelta64`` column, which carries its own unit.
     """
     if irregular not in ("refuse", "keep"):
         raise ValueError(f"irregular={irregular!r}: must be 'refuse' or 'keep'")
+    if time_unit is not None and time_unit not in TIME_UNITS:
+        raise ValueError(f"time_unit={time_unit!r}: must be one of {', '.join(TIME_UNITS)}")
     if not isinstance(source, str):
         raise TypeError(f"source={source!r}: must be a string")
     if hasattr(rates, "columns") and hasattr(rates, "to_numpy"):  # a DataFrame, without importing pandas
@@ -206,20 +246,21 @@ def recording_from_arrays(
         sample_rate = float(check_positive_real("sample_rate", sample_rate))
     converted = _converted_rates(rates, units, source)
     length = len(next(iter(converted.values())))
-    time_array, rate, uniform, notes = _time_axis(time, sample_rate, length, source, irregular)
+    axis = _time_axis(time, sample_rate, length, source, irregular, time_unit)
     temperature_array = (
         None if temperature is None else _check_column("temperature", temperature, source, length)
     )
     angle_array = None if angle is None else _check_column("angle", angle, source, length)
     return Recording(
-        time=time_array,
+        time=axis.time,
         rates=converted,
-        sample_rate=float(rate),
+        sample_rate=float(axis.sample_rate),
         temperature=temperature_array,
         angle=angle_array,
         source=source,
-        uniform=uniform,
-        notes=notes,
+        uniform=axis.uniform,
+        notes=axis.notes,
+        time_origin=axis.origin,
     )
 
 
@@ -240,23 +281,87 @@ def _converted_rates(rates: Mapping[str, Any], units: str, source: str) -> dict[
     return converted
 
 
+@dataclass(frozen=True)
+class _TimeAxis:
+    """A time column counted from its first timestamp, in s, and what the timing check found."""
+
+    time: np.ndarray
+    sample_rate: float
+    uniform: bool
+    notes: tuple[str, ...]
+    origin: float = 0.0
+
+
 def _time_axis(
-    time: Any, sample_rate: float | None, length: int, source: str, irregular: str
-) -> tuple[np.ndarray, float, bool, tuple[str, ...]]:
-    """(time, sample rate, uniform, notes) from a time column or from the sample rate."""
+    time: Any, sample_rate: float | None, length: int, source: str, irregular: str, time_unit: str | None
+) -> _TimeAxis:
+    """The time axis from a time column or from the sample rate."""
     if time is None:
         if sample_rate is None:
             raise ValueError(f"{source}: no time column and no sample_rate; give one of them")
-        return np.arange(length, dtype=np.float64) / sample_rate, sample_rate, True, ()
-    time_array = _check_column("time", time, source, length)
-    rate, uniform, notes = _check_timing(time_array, source, irregular)
+        if time_unit is not None:
+            raise ValueError(f"time_unit={time_unit!r}: given, but {source} has no time column")
+        return _TimeAxis(np.arange(length, dtype=np.float64) / sample_rate, sample_rate, True, ())
+    offsets, origin, resolution = _time_offsets(time, time_unit, source, length)
+    rate, uniform, notes = _check_timing(offsets, resolution, source, irregular)
     if sample_rate is not None and uniform and abs(rate - sample_rate) > 1e-6 * sample_rate:
         raise ValueError(
             f"{source}: sample_rate={sample_rate!r} disagrees with the time column ({rate:.9g} Hz)"
         )
     if sample_rate is not None and uniform:
         rate = sample_rate
-    return time_array, rate, uniform, notes
+    return _TimeAxis(offsets, rate, uniform, notes, origin)
+
+
+def _time_offsets(
+    time: Any, time_unit: str | None, source: str, length: int
+) -> tuple[np.ndarray, float, float]:
+    """(seconds after the first timestamp, the first timestamp in s, the resolution of a step in s).
+
+    The first timestamp is subtracted before scaling to seconds, exactly: in integer arithmetic for
+    integer and ``datetime64``/``timedelta64`` columns; for floats the differences of neighbouring
+    floats are exact (Sterbenz), and the resolution is two float spacings at the largest timestamp, so
+    epoch seconds at 100 Hz (1700000000.01, spacing 2.4·10⁻⁷ s) are not mistaken for jitter.
+    """
+    raw = time if hasattr(time, "dtype") else np.asarray(time)
+    kind = raw.dtype.kind
+    if kind in "mM":
+        return _datetime_offsets(np.asarray(raw), time_unit, source, length)
+    scale = TIME_UNITS["s" if time_unit is None else time_unit]
+    if kind in "iu":
+        _check_column("time", raw, source, length)  # the shape and the length
+        integers = np.asarray(raw).astype(np.int64)
+        first = int(raw[0])
+        return (integers - integers[0]).astype(np.float64) * scale, first * scale, scale
+    array = _check_column("time", raw, source, length)
+    first_value = float(array[0])
+    largest = float(np.max(np.abs(array[[0, -1]])))
+    offsets = array - first_value if first_value else array
+    if scale != 1.0:
+        offsets = offsets * scale
+    return offsets, first_value * scale, 2.0 * float(np.spacing(largest)) * scale
+
+
+def _datetime_offsets(
+    raw: np.ndarray, time_unit: str | None, source: str, length: int
+) -> tuple[np.ndarray, float, float]:
+    """:func:`_time_offsets` for ``datetime64``/``timedelta64``: their unit is their own."""
+    if time_unit is not None:
+        raise ValueError(
+            f"time_unit={time_unit!r}: the time column of {source} is {raw.dtype}, which carries its own "
+            "unit; leave time_unit unset"
+        )
+    unit, count = np.datetime_data(raw.dtype)
+    if unit in ("Y", "M", "generic"):
+        raise ValueError(f"{source}: time column of dtype {raw.dtype}: months and years have no fixed length")
+    if raw.ndim != 1 or len(raw) != length:
+        raise ValueError(f"{source}: column 'time' must be 1-dimensional with {length} samples")
+    missing = np.flatnonzero(np.isnat(raw))
+    if missing.size:
+        raise ValueError(f"{source}: column 'time' holds NaT at row {int(missing[0])} (counted from 0)")
+    tick = count * float(np.timedelta64(1, unit) / np.timedelta64(1, "ns")) * 1e-9
+    integers = raw.view(np.int64)
+    return (integers - integers[0]).astype(np.float64) * tick, int(integers[0]) * tick, tick
 
 
 def _is_rate_name(name: str) -> bool:
