@@ -23,18 +23,19 @@ Long recordings (12 h at 1 kHz is 4.3·10⁷ rows)
 
 from __future__ import annotations
 
+import codecs
 import csv
 import math
 import zipfile
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from itertools import islice
+from itertools import count
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from carousel_theory._validation import check_positive_real
+from carousel_theory._validation import check_positive_integer, check_positive_real
 from carousel_theory.units import rate_to_rad_per_s
 
 __all__ = ["MAX_VALUES", "TIME_UNITS", "Recording", "load_recording", "recording_from_arrays"]
@@ -380,7 +381,7 @@ def _pick(names: list[str], candidates: tuple[str, ...]) -> str | None:
     return None
 
 
-def _read_npz(path: Path) -> dict[str, np.ndarray]:
+def _read_npz(path: Path, max_values: int) -> dict[str, np.ndarray]:
     with path.open("rb") as handle:
         magic = handle.read(4)
     if magic != b"PK\x03\x04":
@@ -388,13 +389,56 @@ def _read_npz(path: Path) -> dict[str, np.ndarray]:
     try:
         with zipfile.ZipFile(path) as archive:
             members = [info for info in archive.infolist() if info.filename.endswith(".npy")]
+            values = sum(_member_values(archive, info, path) for info in members)
+            _check_values(values, max_values, path, "its arrays' headers declare")
             mapped = {info.filename[:-4]: _mapped_member(path, info) for info in members}
         if all(array is not None for array in mapped.values()):
             return {name: array for name, array in mapped.items() if array is not None}
         with np.load(path, allow_pickle=False) as loaded:
             return {name: np.asarray(loaded[name]) for name in loaded.files}
     except (ValueError, OSError, zipfile.BadZipFile) as error:
-        raise ValueError(f"{path}: not a readable NPZ file ({error})") from None
+        message = str(error)
+        if not message.startswith(str(path)):
+            message = f"{path}: not a readable NPZ file ({error})"
+        raise ValueError(message) from None
+
+
+def _check_values(values: int, max_values: int, path: Path, what: str) -> None:
+    """Refuse, before expanding them, more values than ``max_values``."""
+    if values > max_values:
+        raise ValueError(
+            f"{path}: {what} {values} values ({values * 8 / 1e9:.3g} GB as float64), more than "
+            f"max_values={max_values} (the default {MAX_VALUES} is 8 GB); raise max_values "
+            "(--max-values) if the machine has the memory"
+        )
+
+
+def _member_values(archive: zipfile.ZipFile, info: zipfile.ZipInfo, path: Path) -> int:
+    """The number of values an .npy member's header declares, checked against the zip directory.
+
+    Only the header is read (decompressing a few hundred bytes): the shape it declares bounds what the
+    member expands to, and the uncompressed size the zip directory states must match it exactly, so a
+    deflate bomb or a header claiming 10¹² samples is refused before anything is expanded.
+    """
+    with archive.open(info) as member:
+        version = np.lib.format.read_magic(member)
+        read_header = (
+            np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
+        )
+        shape, _, dtype = read_header(member)
+        header_bytes = member.tell()
+    if dtype.hasobject:
+        raise ValueError(
+            f"{path}: member {info.filename!r} holds Python objects ({dtype}); only numbers are read"
+        )
+    values = math.prod(int(n) for n in shape)
+    expected = header_bytes + values * dtype.itemsize
+    if info.file_size != expected:
+        raise ValueError(
+            f"{path}: member {info.filename!r} declares shape {shape} of {dtype} ({expected} bytes with its "
+            f"header) but the zip directory says it holds {info.file_size} bytes; the file is corrupt"
+        )
+    return values
 
 
 def _mapped_member(path: Path, info: zipfile.ZipInfo) -> np.ndarray | None:
@@ -427,15 +471,28 @@ def _mapped_member(path: Path, info: zipfile.ZipInfo) -> np.ndarray | None:
 
 
 def _csv_header(path: Path) -> tuple[list[str], str]:
-    """(column names, delimiter) from the first line; refuses binary or non-UTF-8 content."""
+    """(column names, delimiter) from the first line; refuses binary or non-UTF-8 content.
+
+    Only the first ``BINARY_CHECK_BYTES`` are read here: a binary file (NUL bytes, a zip archive, bytes
+    that are not UTF-8) is refused before the rest of it is touched, and the header row must end in them.
+    """
     with path.open("rb") as handle:
-        head = handle.read(4096)
+        head = handle.read(BINARY_CHECK_BYTES)
+    whole = len(head) < BINARY_CHECK_BYTES
     if b"\x00" in head or head[:4] == b"PK\x03\x04":
-        raise ValueError(f"{path}: not a CSV text file (binary content)")
+        raise ValueError(f"{path}: not a CSV text file (binary content in the first {len(head)} bytes)")
     try:
-        text = head.decode("utf-8-sig") if len(head) < 4096 else head[:4000].decode("utf-8-sig", "ignore")
+        # An incremental decoder accepts a character cut by the block's end, and nothing else invalid.
+        text = codecs.getincrementaldecoder("utf-8-sig")().decode(head, final=whole)
     except UnicodeDecodeError as error:
-        raise ValueError(f"{path}: not a CSV text file (not UTF-8: {error})") from None
+        raise ValueError(
+            f"{path}: not a CSV text file (not UTF-8 at byte {error.start} of the first block)"
+        ) from None
+    if not whole and "\n" not in text and "\r" not in text:
+        raise ValueError(
+            f"{path}: not a CSV file (no line break in the first {BINARY_CHECK_BYTES} bytes: the header "
+            "row is missing or the file is not line-oriented text)"
+        )
     lines = text.splitlines()
     if not lines or not lines[0].strip():
         raise ValueError(f"{path}: empty CSV file (no header row)")
@@ -450,19 +507,20 @@ def _csv_header(path: Path) -> tuple[list[str], str]:
         raise ValueError(f"{path}: the first row {header_line!r} is not a header row (it holds numbers)")
     if len(set(header)) != len(header):
         raise ValueError(f"{path}: repeated column names in the header {header}")
-    if len(lines) < 2 and len(head) < 4096:
+    if len(lines) < 2 and whole:
         raise ValueError(f"{path}: the CSV file has a header but no data rows")
     return header, delimiter
 
 
-def _read_csv(path: Path) -> dict[str, np.ndarray]:
+def _read_csv(path: Path, max_values: int) -> dict[str, np.ndarray]:
     header, delimiter = _csv_header(path)
     try:
         import pyarrow as arrow
         import pyarrow.csv as arrow_csv
     except ImportError:
-        return _read_csv_numpy(path, header, delimiter)
+        return _read_csv_numpy(path, header, delimiter, max_values)
     chunks: dict[str, list[np.ndarray]] = {name: [] for name in header}
+    rows = 0
     try:
         reader = arrow_csv.open_csv(
             path,
@@ -472,6 +530,8 @@ def _read_csv(path: Path) -> dict[str, np.ndarray]:
             memory_pool=arrow.system_memory_pool(),  # freed blocks go back to the system at once
         )
         for batch in reader:  # batch by batch: the text is never held whole, and Arrow's buffers are freed
+            rows += batch.num_rows
+            _check_values(rows * len(header), max_values, path, f"its first {rows} rows already hold")
             for index, name in enumerate(header):
                 chunks[name].append(batch.column(index).to_numpy(zero_copy_only=False))
     except (arrow.ArrowInvalid, UnicodeDecodeError) as error:
@@ -487,10 +547,23 @@ def _read_csv(path: Path) -> dict[str, np.ndarray]:
 
 
 def _locate_bad_field(path: Path, header: list[str], delimiter: str, error: Exception) -> str:
-    """Scan the file line by line for the first row with a wrong field count or a non-number."""
+    """Scan the file line by line for the first row with a wrong field count or a non-number.
+
+    Lines are read at most ``MAX_LINE_BYTES`` at a time: a file without line breaks is refused, not
+    read whole into memory.
+    """
     with path.open("r", encoding="utf-8-sig", errors="replace", newline="") as handle:
-        for row, fields in enumerate(csv.reader(islice(handle, 1, None), delimiter=delimiter)):
+        handle.readline(MAX_LINE_BYTES)  # the header, checked already
+        for row in count():
+            line = handle.readline(MAX_LINE_BYTES)
+            if not line:
+                break
             where = f"row {row} (counted from 0, header excluded)"
+            if len(line) >= MAX_LINE_BYTES and not line.endswith(("\n", "\r")):
+                return f"{where} is longer than {MAX_LINE_BYTES} characters; not a CSV recording"
+            if "\x00" in line:
+                return f"{where} holds NUL bytes: binary content"
+            fields = next(csv.reader([line], delimiter=delimiter), [])
             if len(fields) != len(header):
                 return f"{where} has {len(fields)} fields, the header {len(header)}"
             for column, field_text in zip(header, fields, strict=True):
@@ -499,7 +572,14 @@ def _locate_bad_field(path: Path, header: list[str], delimiter: str, error: Exce
     return str(error).splitlines()[0]
 
 
-def _read_csv_numpy(path: Path, header: list[str], delimiter: str) -> dict[str, np.ndarray]:
+def _read_csv_numpy(
+    path: Path, header: list[str], delimiter: str, max_values: int
+) -> dict[str, np.ndarray]:
+    # Every value takes at least two bytes ("0,"): a file too short to exceed the limit needs no count.
+    if path.stat().st_size // 2 > max_values:
+        with path.open("rb") as handle:
+            lines = sum(block.count(b"\n") for block in iter(lambda: handle.read(1 << 20), b""))
+        _check_values(lines * len(header), max_values, path, "its rows hold")
     try:
         table = np.loadtxt(path, delimiter=delimiter, skiprows=1, dtype=np.float64, ndmin=2, comments=None)
     except ValueError as error:
@@ -561,6 +641,8 @@ def load_recording(
     sample_rate: float | None = None,
     units: str = "rad/s",
     irregular: str = "refuse",
+    time_unit: str | None = None,
+    max_values: int = MAX_VALUES,
 ) -> Recording:
     """Read a CSV (with a header row) or NPZ recording; the file is opened read-only.
 
@@ -579,9 +661,15 @@ def load_recording(
         Units of the gyro columns in the file.
     irregular : {"refuse", "keep"}
         What to do with gaps or non-uniform timestamps.
+    time_unit : {"s", "ms", "us", "ns"}, optional
+        Unit of a numeric time column (default s); see :func:`recording_from_arrays`.
+    max_values : int
+        Most values (all columns together) read into memory; an NPZ is refused from its headers, a CSV
+        as soon as its rows exceed it (default ``MAX_VALUES``, 10⁹ values, 8 GB as float64).
     """
     if not isinstance(path, (str, Path)):
         raise TypeError(f"path={path!r}: must be a str or pathlib.Path")
+    max_values = check_positive_integer("max_values", max_values)
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"{path}: no such file")
@@ -591,9 +679,9 @@ def load_recording(
         raise ValueError(f"{path}: empty file")
     suffix = path.suffix.lower()
     if suffix == ".npz":
-        table = _read_npz(path)
+        table = _read_npz(path, max_values)
     elif suffix in (".csv", ".txt"):
-        table = _read_csv(path)
+        table = _read_csv(path, max_values)
     else:
         raise ValueError(f"{path}: unknown extension {path.suffix!r}; must be .csv or .npz")
     time_name, temperature_name, angle_name, rate_names = _column_roles(table, columns, path)
@@ -610,4 +698,5 @@ def load_recording(
         units=units,
         source=str(path),
         irregular=irregular,
+        time_unit=time_unit,
     )
