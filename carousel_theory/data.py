@@ -9,16 +9,26 @@ need a uniform sample rate (the Allan variance) refuse it. Files are only ever o
 
 Long recordings (12 h at 1 kHz is 4.3·10⁷ rows)
     CSV is parsed by ``pyarrow.csv`` when pyarrow is installed (the ``data`` extra; the core needs only
-    NumPy): its streaming reader parses blocks of 4 MB on all cores (larger blocks in flight cost memory) straight into float64 columns,
-    without holding the text in memory, about ten times faster than ``numpy.loadtxt``; the columns are
-    joined one at a time, so the peak is about one extra column; pandas' C engine is as fast on one
-    core but names neither the row nor the column of a bad value. Without pyarrow, ``numpy.loadtxt`` is
-    used. When the fast parser refuses a file, the file is scanned once more, line by line, to name the
-    row (counted from 0, header excluded) and the column of the first bad field. Only the first 4 KiB are
-    read to check the header and that the file is text.
+    NumPy): its streaming reader parses blocks of 4 MB on all cores (larger blocks in flight cost memory)
+    straight into float64 columns, without holding the text in memory, about ten times faster than
+    ``numpy.loadtxt``; the columns are joined one at a time, so the peak is about one extra column;
+    pandas' C engine is as fast on one core but names neither the row nor the column of a bad value.
+    Without pyarrow, ``numpy.loadtxt`` is used. When the fast parser refuses a file, the file is scanned
+    once more, line by line, to name the row (counted from 0, header excluded) and the column of the first
+    bad field; that scan reads lines of at most ``MAX_LINE_BYTES``. The first ``BINARY_CHECK_BYTES`` (64
+    KiB) are read to check the header and that the file is text (no NUL byte, valid UTF-8) before the rest
+    is parsed.
     An NPZ written without compression (``numpy.savez``) is memory-mapped, read-only: its arrays are
     paged in as the analysis touches them. A compressed NPZ (``savez_compressed``) is decompressed into
-    memory.
+    memory. The headers of all members are read first: a file whose headers declare more than
+    ``max_values`` values (default ``MAX_VALUES``), or whose zip directory states an uncompressed size
+    other than the header's shape implies, is refused before anything is expanded.
+
+Timestamps
+    A numeric time column is in s unless ``time_unit`` says ms, us or ns; ``datetime64`` and
+    ``timedelta64`` columns are converted from their own unit. The first timestamp is subtracted
+    before scaling (in integer arithmetic for integer and date columns), so epoch timestamps keep
+    their steps exact; the recording's ``time`` counts from it and ``time_origin`` keeps it.
 """
 
 from __future__ import annotations
@@ -572,9 +582,7 @@ def _locate_bad_field(path: Path, header: list[str], delimiter: str, error: Exce
     return str(error).splitlines()[0]
 
 
-def _read_csv_numpy(
-    path: Path, header: list[str], delimiter: str, max_values: int
-) -> dict[str, np.ndarray]:
+def _read_csv_numpy(path: Path, header: list[str], delimiter: str, max_values: int) -> dict[str, np.ndarray]:
     # Every value takes at least two bytes ("0,"): a file too short to exceed the limit needs no count.
     if path.stat().st_size // 2 > max_values:
         with path.open("rb") as handle:
