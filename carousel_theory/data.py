@@ -48,7 +48,14 @@ import numpy as np
 from carousel_theory._validation import check_positive_integer, check_positive_real
 from carousel_theory.units import rate_to_rad_per_s
 
-__all__ = ["MAX_VALUES", "TIME_UNITS", "Recording", "load_recording", "recording_from_arrays"]
+__all__ = [
+    "MAX_VALUES",
+    "RESERVED_COLUMN_NAMES",
+    "TIME_UNITS",
+    "Recording",
+    "load_recording",
+    "recording_from_arrays",
+]
 
 #: Relative spread of the time steps tolerated as "uniform" (clock jitter of float timestamps).
 UNIFORM_TOLERANCE = 1e-6
@@ -70,6 +77,8 @@ _TEMPERATURE_NAMES = ("temp", "temperature")
 _ANGLE_NAMES = ("phi", "angle")
 _RATE_PREFIXES = ("w", "gyro", "omega")
 _NON_RATE_NAMES = {"t_raw", "fs", "sample_rate"}
+#: Column names (compared in lower case) the readers give a role other than a gyro axis.
+RESERVED_COLUMN_NAMES = frozenset((*_TIME_NAMES, *_TEMPERATURE_NAMES, *_ANGLE_NAMES, *_NON_RATE_NAMES))
 
 
 @dataclass(frozen=True)
@@ -198,10 +207,12 @@ def _check_timing(
     if notes:
         # The nominal rate of irregular data is the mean rate, not the median: it keeps duration right.
         return (len(time) - 1) / float(time[-1] - time[0]), False, tuple(notes)
-    # The mean rate over the whole record, rounded to 9 significant digits: float timestamps such as
-    # i/100 carry rounding that would otherwise leak into every τ (0.00999999999999801 s).
-    rate = (len(time) - 1) / float(time[-1] - time[0])
-    return float(f"{rate:.9g}"), True, ()
+    # The mean rate over the whole record, rounded to 9 significant digits, or fewer when the
+    # timestamps' resolution allows fewer (epoch seconds in float64: 2.4·10⁻⁷ s): float timestamps such
+    # as i/100 carry rounding that would otherwise leak into every τ (0.00999999999999801 s).
+    span = float(time[-1] - time[0])
+    digits = 9 if resolution <= 0 else min(9, max(1, math.floor(-math.log10(resolution / span))))
+    return float(f"{(len(time) - 1) / span:.{digits}g}"), True, ()
 
 
 def recording_from_arrays(

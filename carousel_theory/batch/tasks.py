@@ -24,7 +24,7 @@ import numpy as np
 from carousel_theory.allan import ESTIMATORS, allan_variance
 from carousel_theory.batch.rows import BatchRow
 from carousel_theory.closed_loop import run_loop
-from carousel_theory.data import load_recording
+from carousel_theory.data import MAX_VALUES, load_recording
 from carousel_theory.fitting import COMPONENTS, NoiseModel, fit_noise_model
 from carousel_theory.units import bias_instability_from_allan_minimum, rad_per_s_to_deg_per_h
 
@@ -53,6 +53,8 @@ class TaskOptions:
     samples_per_revolution: int = 200
     alpha: float = 0.01
     loop_axes: tuple[str, ...] | None = None
+    time_unit: str | None = None
+    max_values: int = MAX_VALUES
 
     def fingerprint(self) -> str:
         """A stable text of the options: rows computed with other options are not reused."""
@@ -66,6 +68,8 @@ def _load(path: str, options: TaskOptions, irregular: str = "refuse") -> Any:
         sample_rate=options.sample_rate,
         units=options.units,
         irregular=irregular,
+        time_unit=options.time_unit,
+        max_values=options.max_values,
     )
 
 

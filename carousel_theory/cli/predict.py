@@ -14,6 +14,7 @@ import numpy as np
 
 from carousel_theory._validation import check_fractional_order, check_positive_integer, check_positive_real
 from carousel_theory.cli._files import write_or_compare
+from carousel_theory.cli._recording_options import add_reader_options
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -28,6 +29,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("data", nargs="?", type=Path, help="a recording (CSV or NPZ) to predict")
     parser.add_argument("--axis", default=None, help="gyro column (default: the first in the file)")
+    add_reader_options(parser)
     parser.add_argument(
         "--start", type=int, default=0, help="index of the first calibration sample (default 0)"
     )
@@ -110,7 +112,7 @@ def _run_recording(args: argparse.Namespace) -> int:
     from carousel_theory.data import load_recording
 
     calibration_length, horizon = _check_recording_options(args)
-    recording = load_recording(args.data)
+    recording = load_recording(args.data, time_unit=args.time_unit, max_values=args.max_values)
     axis = args.axis or next(iter(recording.rates))
     if axis not in recording.rates:
         raise ValueError(f"--axis={axis!r}: not in the recording (have {sorted(recording.rates)})")
