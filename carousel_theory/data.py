@@ -250,20 +250,8 @@ def recording_from_arrays(
         Unit of a numeric time column (default s), e.g. "ms" for epoch milliseconds. Not allowed with a
         ``datetime64``/``timedelta64`` column, which carries its own unit.
     """
-    if irregular not in ("refuse", "keep"):
-        raise ValueError(f"irregular={irregular!r}: must be 'refuse' or 'keep'")
-    if time_unit is not None and time_unit not in TIME_UNITS:
-        raise ValueError(f"time_unit={time_unit!r}: must be one of {', '.join(TIME_UNITS)}")
-    if not isinstance(source, str):
-        raise TypeError(f"source={source!r}: must be a string")
-    if hasattr(rates, "columns") and hasattr(rates, "to_numpy"):  # a DataFrame, without importing pandas
-        rates = {str(name): rates[name].to_numpy() for name in rates.columns}
-    if not isinstance(rates, Mapping):
-        raise TypeError(
-            f"rates={type(rates).__name__}: must be a mapping of column name to array, or a DataFrame"
-        )
-    if len(rates) == 0:
-        raise ValueError(f"{source}: no gyro columns (rates is empty)")
+    _check_reading_options(irregular, time_unit, source)
+    rates = _rate_mapping(rates, source)
     if sample_rate is not None:
         sample_rate = float(check_positive_real("sample_rate", sample_rate))
     converted = _converted_rates(rates, units, source)
@@ -284,6 +272,28 @@ def recording_from_arrays(
         notes=axis.notes,
         time_origin=axis.origin,
     )
+
+
+def _rate_mapping(rates: Any, source: str) -> Mapping[str, Any]:
+    """``rates`` as a non-empty mapping of column name to values (a DataFrame's columns)."""
+    if hasattr(rates, "columns") and hasattr(rates, "to_numpy"):  # a DataFrame, without importing pandas
+        rates = {str(name): rates[name].to_numpy() for name in rates.columns}
+    if not isinstance(rates, Mapping):
+        raise TypeError(
+            f"rates={type(rates).__name__}: must be a mapping of column name to array, or a DataFrame"
+        )
+    if len(rates) == 0:
+        raise ValueError(f"{source}: no gyro columns (rates is empty)")
+    return rates
+
+
+def _check_reading_options(irregular: Any, time_unit: Any, source: Any) -> None:
+    if irregular not in ("refuse", "keep"):
+        raise ValueError(f"irregular={irregular!r}: must be 'refuse' or 'keep'")
+    if time_unit is not None and time_unit not in TIME_UNITS:
+        raise ValueError(f"time_unit={time_unit!r}: must be one of {', '.join(TIME_UNITS)}")
+    if not isinstance(source, str):
+        raise TypeError(f"source={source!r}: must be a string")
 
 
 def _converted_rates(rates: Mapping[str, Any], units: str, source: str) -> dict[str, np.ndarray]:
@@ -381,7 +391,7 @@ def _datetime_offsets(
     missing = np.flatnonzero(np.isnat(raw))
     if missing.size:
         raise ValueError(f"{source}: column 'time' holds NaT at row {int(missing[0])} (counted from 0)")
-    tick = count * float(np.timedelta64(1, unit) / np.timedelta64(1, "ns")) * 1e-9
+    tick = float(np.array(count, dtype=f"m8[{unit}]") / np.timedelta64(1, "s"))
     integers = raw.view(np.int64)
     return (integers - integers[0]).astype(np.float64) * tick, int(integers[0]) * tick, tick
 
@@ -653,6 +663,22 @@ def _looks_numeric(text: str) -> bool:
     return True
 
 
+def _read_table(path: Path, max_values: int) -> dict[str, np.ndarray]:
+    """The columns of a CSV or NPZ file, by its extension."""
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such file")
+    if path.is_dir():
+        raise ValueError(f"{path}: is a directory, not a recording file")
+    if path.stat().st_size == 0:
+        raise ValueError(f"{path}: empty file")
+    suffix = path.suffix.lower()
+    if suffix == ".npz":
+        return _read_npz(path, max_values)
+    if suffix in (".csv", ".txt"):
+        return _read_csv(path, max_values)
+    raise ValueError(f"{path}: unknown extension {path.suffix!r}; must be .csv or .npz")
+
+
 def load_recording(
     path: str | Path,
     *,
@@ -688,21 +714,8 @@ def load_recording(
     """
     if not isinstance(path, (str, Path)):
         raise TypeError(f"path={path!r}: must be a str or pathlib.Path")
-    max_values = check_positive_integer("max_values", max_values)
+    table = _read_table(Path(path), check_positive_integer("max_values", max_values))
     path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"{path}: no such file")
-    if path.is_dir():
-        raise ValueError(f"{path}: is a directory, not a recording file")
-    if path.stat().st_size == 0:
-        raise ValueError(f"{path}: empty file")
-    suffix = path.suffix.lower()
-    if suffix == ".npz":
-        table = _read_npz(path, max_values)
-    elif suffix in (".csv", ".txt"):
-        table = _read_csv(path, max_values)
-    else:
-        raise ValueError(f"{path}: unknown extension {path.suffix!r}; must be .csv or .npz")
     time_name, temperature_name, angle_name, rate_names = _column_roles(table, columns, path)
     if sample_rate is None and "fs" in table and np.size(table["fs"]) == 1:
         sample_rate = float(np.asarray(table["fs"]).reshape(()))

@@ -147,8 +147,11 @@ def default_temperature_profile(time: np.ndarray) -> np.ndarray:
     return 25.0 + 0.5 * relative + 0.8 * np.sin(2.0 * np.pi * relative / 0.6 + 0.3)
 
 
-def _check_size_rate_generator(samples: Any, sample_rate: Any, rng: Any) -> tuple[int, float]:
+def _check_size_rate_generator(
+    samples: Any, sample_rate: Any, rng: Any, max_samples: int
+) -> tuple[int, float]:
     samples = check_positive_integer("samples", samples, minimum=2)
+    _check_sample_budget(samples, 1, max_samples)
     sample_rate = float(check_positive_real("sample_rate", sample_rate))
     if not isinstance(rng, np.random.Generator):
         raise TypeError(f"rng={rng!r}: must be a numpy.random.Generator (np.random.default_rng(seed))")
@@ -184,10 +187,9 @@ def _check_sample_budget(samples: int, columns: int, max_samples: int) -> None:
     max_samples = check_positive_integer("max_samples", max_samples)
     if samples > max_samples:
         raise ValueError(
-            f"samples={samples}: more than max_samples={max_samples} "
-            f"(about {samples * columns * 8 / 1e9:.3g} "
-            f"GB for {columns} float64 columns); raise max_samples (--max-samples) if the machine has "
-            "the memory"
+            f"samples={samples}: more than max_samples={max_samples} (about "
+            f"{samples * columns * 8 / 1e9:.3g} GB for {columns} float64 column{'s' * (columns > 1)}); "
+            "raise max_samples (--max-samples) if the machine has the memory"
         )
 
 
@@ -292,8 +294,8 @@ def simulate_recording(
 
     Parameters
     ----------
-    samples, sample_rate
-        Length and rate (Hz) of the recording.
+    samples, sample_rate, max_samples
+        Length and rate (Hz) of the recording; more than ``max_samples`` samples are refused.
     rng
         The only source of randomness.
     bias
@@ -312,13 +314,9 @@ def simulate_recording(
     samples_per_revolution
         When given, a ``phi`` column of a uniform rotation with this many samples per revolution,
         φ_i = 2π i / N (TIM 2014 eq. (6)); the rates stay those of a static sensor.
-    max_samples
-        Most samples refused before any work (default :data:`MAX_SIMULATED_SAMPLES`).
-
     """
-    samples, sample_rate = _check_size_rate_generator(samples, sample_rate, rng)
+    samples, sample_rate = _check_size_rate_generator(samples, sample_rate, rng, max_samples)
     biases = _axis_biases(axes, bias)
-    _check_sample_budget(samples, len(biases) + 2, max_samples)
     injections = [parse_injection(e) if isinstance(e, str) else e for e in effects]
     resolved = [(i.name, _resolved_parameters(i)) for i in injections]
     time = np.arange(samples, dtype=np.float64) / sample_rate
