@@ -135,7 +135,7 @@ class Recording:
 
 
 def _check_column(name: str, values: Any, source: str, expected_length: int | None) -> np.ndarray:
-    kind = getattr(values, "dtype", np.asarray(values).dtype).kind
+    kind = (values.dtype if hasattr(values, "dtype") else np.asarray(values).dtype).kind
     if kind == "c":
         raise TypeError(
             f"{source}: column {name!r} holds complex numbers; it must hold real numbers (the imaginary "
@@ -444,6 +444,15 @@ def _check_values(values: int, max_values: int, path: Path, what: str) -> None:
         )
 
 
+def _npy_header(handle: Any) -> tuple[tuple[int, ...], bool, np.dtype]:
+    """(shape, Fortran order, dtype) from the header of an .npy stream, leaving it at the data."""
+    version = np.lib.format.read_magic(handle)
+    read_header = (
+        np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
+    )
+    return read_header(handle)
+
+
 def _member_values(archive: zipfile.ZipFile, info: zipfile.ZipInfo, path: Path) -> int:
     """The number of values an .npy member's header declares, checked against the zip directory.
 
@@ -452,11 +461,7 @@ def _member_values(archive: zipfile.ZipFile, info: zipfile.ZipInfo, path: Path) 
     deflate bomb or a header claiming 10¹² samples is refused before anything is expanded.
     """
     with archive.open(info) as member:
-        version = np.lib.format.read_magic(member)
-        read_header = (
-            np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
-        )
-        shape, _, dtype = read_header(member)
+        shape, _, dtype = _npy_header(member)
         header_bytes = member.tell()
     if dtype.hasobject:
         raise ValueError(
@@ -486,11 +491,7 @@ def _mapped_member(path: Path, info: zipfile.ZipInfo) -> np.ndarray | None:
             int.from_bytes(local[28:30], "little"),
         )
         handle.seek(info.header_offset + 30 + name_length + extra_length)
-        version = np.lib.format.read_magic(handle)
-        read_header = (
-            np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
-        )
-        shape, fortran_order, dtype = read_header(handle)
+        shape, fortran_order, dtype = _npy_header(handle)
         offset = handle.tell()
     if dtype.hasobject:
         return None
