@@ -25,7 +25,7 @@ import numpy as np
 from carousel_theory.allan import ESTIMATORS, allan_variance
 from carousel_theory.batch.rows import BatchRow
 from carousel_theory.closed_loop import run_loop
-from carousel_theory.data import load_recording
+from carousel_theory.data import MAX_VALUES, load_recording
 from carousel_theory.design import DesignSettings, default_schemes, evaluate_scheme, recommended
 from carousel_theory.fitting import COMPONENTS, NoiseModel, fit_noise_model
 from carousel_theory.heading import check_latitude
@@ -61,6 +61,8 @@ class TaskOptions:
     latitude: float | None = None
     design_durations: tuple[float, ...] = (3600.0,)
     schemes: tuple[str, ...] = ()
+    time_unit: str | None = None
+    max_values: int = MAX_VALUES
 
     def fingerprint(self) -> str:
         """A stable text of the options: rows computed with other options are not reused."""
@@ -74,6 +76,8 @@ def _load(path: str, options: TaskOptions, irregular: str = "refuse") -> Any:
         sample_rate=options.sample_rate,
         units=options.units,
         irregular=irregular,
+        time_unit=options.time_unit,
+        max_values=options.max_values,
     )
 
 

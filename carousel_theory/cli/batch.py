@@ -99,6 +99,8 @@ def _options(args: argparse.Namespace) -> TaskOptions:
         columns=tuple((_COLUMN_ALIASES.get(ours, ours), theirs) for ours, theirs in args.column),
         units=args.units,
         sample_rate=args.sample_rate,
+        time_unit=args.time_unit,
+        max_values=args.max_values,
         estimator=args.estimator,
         model=args.model,
         flicker_d=args.flicker_d,
