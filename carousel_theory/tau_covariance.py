@@ -296,7 +296,59 @@ def _lag_sum(
     dense = memory.cross_covariance(m_i, m_j, int(deltas[0]), int(deltas[-1]))
     c = dense if estimator == "overlapping" else dense[deltas - deltas[0]]
     bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
-    return float(np.dot(counts, c * c)), bound
+    return float(np.einsum("i,i,i->", counts, c, c)), bound
+
+
+def _pair_window(memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[int, int, int]:
+    """(first δ, last δ, reach) of the overlapping lag sum of one pair (as in :func:`_lag_sum`)."""
+    reach = _lag_window(memory.model, m_i, m_j)
+    return max(-(K_i - 1), -2 * m_j - reach), min(K_j - 1, 2 * m_i + reach), reach
+
+
+def _counted_square_sum(c: np.ndarray, first: int, K_i: int, K_j: int, ramp: np.ndarray) -> float:
+    """Σ_δ N_ij(δ) c(δ)² for δ = first, first + 1, …: N_ij is linear between its breaks 0 and K_j − K_i,
+    so each piece is N(s) Σ c² + slope Σ (δ − s) c² (no per-δ count array). einsum rather than np.dot:
+    a threaded BLAS dot stalls on a loaded machine and gains nothing on one vector."""
+    squares = c * c
+    last = first + len(c)
+    breaks = sorted({first, last, *(b for b in (0, K_j - K_i) if first < b < last)})
+    total = 0.0
+    for start, stop in itertools.pairwise(breaks):
+        piece = squares[start - first : stop - first]
+        count = _pair_count(start, K_i, K_j)
+        slope = _pair_count(start + 1, K_i, K_j) - count if stop - start > 1 else 0
+        total += count * float(np.sum(piece)) + slope * float(np.einsum("i,i->", ramp[: stop - start], piece))
+    return total
+
+
+def _column_lag_sums(memory: _LongMemory, sizes: list[int], terms: list[int]) -> list[tuple[float, float]]:
+    """(Σ N c², tail bound) of the overlapping lag sums of the pairs (i, j = last), sizes increasing.
+
+    Along octave steps the triangle doubles, B_{2m}² = B_m² (1 + x^m)², so
+    c_{2m,j}(δ) = c_{m,j}(δ) + 2 c_{m,j}(δ − m) + c_{m,j}(δ − 2m): three additions per lag instead of two
+    moving sums per pair. Other steps start afresh from A_j.
+    """
+    m_j, K_j = sizes[-1], terms[-1]
+    windows = [_pair_window(memory, m, m_j, K, K_j) for m, K in zip(sizes, terms, strict=True)]
+    top = max(high for _, high, _ in windows)
+    starts = [min(low for low, _, _ in windows)] * len(sizes)
+    for i in range(len(sizes) - 2, -1, -1):  # how far below each c_i must reach for the later doublings
+        starts[i] = starts[i + 1] - 2 * sizes[i] if sizes[i + 1] == 2 * sizes[i] else starts[-1]
+    ramp = np.arange(top - starts[0] + 1, dtype=np.float64)
+    results: list[tuple[float, float]] = []
+    values, first = np.zeros(0), 0
+    for i, (m_i, K_i) in enumerate(zip(sizes, terms, strict=True)):
+        if i > 0 and m_i == 2 * sizes[i - 1]:
+            m, length = sizes[i - 1], len(values)
+            values = values[2 * m :] + 2.0 * values[m : length - m] + values[: length - 2 * m]
+            first += 2 * m
+        else:
+            values, first = memory.cross_covariance(m_i, m_j, starts[i], top), starts[i]
+        low, high, reach = windows[i]
+        total = _counted_square_sum(values[low - first : high - first + 1], low, K_i, K_j, ramp)
+        bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
+        results.append((total, bound))
+    return results
 
 
 # --- public ---------------------------------------------------------------------------------------
@@ -330,10 +382,18 @@ def allan_estimate_covariance(
     memory = _LongMemory(model, sizes, int(length)) if long_terms or estimator != "overlapping" else None
     count = len(sizes)
     covariance, bound = np.empty((count, count)), np.zeros((count, count))
+    by_column = memory is not None and estimator == "overlapping" and bool(np.all(np.diff(sizes) > 0))
     for j in range(count):  # column by column: A_j is prepared once per j
+        column = (
+            _column_lag_sums(memory, sizes[: j + 1].tolist(), terms[: j + 1].tolist())
+            if by_column and memory is not None
+            else None
+        )
         for i in range(j + 1):
             m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
-            if memory is None:
+            if column is not None:
+                total, tail = column[i]
+            elif memory is None:
                 total, tail = _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
             else:
                 total, tail = _lag_sum(memory, m_i, m_j, K_i, K_j, estimator)
