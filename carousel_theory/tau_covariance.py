@@ -49,7 +49,6 @@ from typing import Any
 
 import numpy as np
 import sympy as sp
-from scipy.signal import fftconvolve
 
 from carousel_theory import symbols
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
@@ -205,10 +204,6 @@ def _finite_sum(model: NoiseModel, m_i: int, m_j: int, K_i: int, K_j: int) -> fl
 # --- the finite lag sums (1/f, AR, non-overlapping) ---------------------------------------------------
 
 
-def _triangle(m: int) -> np.ndarray:
-    return np.minimum(np.arange(1, 2 * m), np.arange(2 * m - 1, 0, -1)).astype(np.float64)
-
-
 def _lag_window(model: NoiseModel, m_i: int, m_j: int) -> int:
     """How far beyond the filters' support c_ij is summed (module text)."""
     terms = model.terms()
@@ -235,8 +230,8 @@ def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, cou
 
 
 class _LongMemory:
-    """c_ij(δ) = Σ_k g_i[k] A_j(δ − k) with A_j = γ_z correlated with g_j once per j (one FFT), and g_i,
-    the triangle B_{m_i}⋆B_{m_i}, applied as two moving sums (cumulative sums): no FFT per pair."""
+    """c_ij(δ) = Σ_k g_i[k] A_j(δ − k) with A_j = γ_z correlated with g_j once per j, and g_i,
+    the triangle B_{m_i}⋆B_{m_i}, applied as two moving sums (cumulative sums), for A_j as for each pair."""
 
     def __init__(self, model: NoiseModel, sizes: np.ndarray, length: int) -> None:
         self.model = model
@@ -260,18 +255,24 @@ class _LongMemory:
         self.low = max(-4 * m_j - reach, -self.length - 2 * m_j)
         high = min(2 * m_j + reach, self.length)
         lags = np.abs(np.arange(self.low, high + 2 * m_j - 1))
-        self.correlated = fftconvolve(self.gamma[lags], _triangle(m_j), mode="valid")
+        self.correlated = _twice_moving_sum(self.gamma[lags], m_j)  # γ_z ⋆ g_j, g_j = B_{m_j} ⋆ B_{m_j}
         self.j = m_j
 
     def cross_covariance(self, m_i: int, m_j: int, first: int, last: int) -> np.ndarray:
         """c_ij(δ) for δ = first … last (inside the window prepared for m_j)."""
         self._prepare(m_j)
         start = first - 2 * m_i + 2 - self.low  # A_j from δ − (2m_i − 2)
-        values = self.correlated[start : last - self.low + 1]
-        for _ in range(2):  # two moving sums of length m_i
-            cumulative = np.concatenate(([0.0], np.cumsum(values)))
-            values = cumulative[m_i:] - cumulative[:-m_i]
-        return values
+        return _twice_moving_sum(self.correlated[start : last - self.low + 1], m_i)
+
+
+def _twice_moving_sum(values: np.ndarray, m: int) -> np.ndarray:
+    """The triangle g_m = B_m ⋆ B_m applied as two moving sums of length m (cumulative sums)."""
+    for _ in range(2):
+        cumulative = np.empty(len(values) + 1)
+        cumulative[0] = 0.0
+        np.cumsum(values, out=cumulative[1:])
+        values = cumulative[m:] - cumulative[:-m]
+    return values
 
 
 def _lag_sum(
