@@ -238,7 +238,9 @@ class _LongMemory:
         self.length = int(length)
         largest = int(np.max(sizes))
         self.reach = {int(m): _lag_window(model, int(m), int(m)) for m in sizes}
-        span = 8 * largest + max(self.reach.values()) + 8
+        # Lags used: |δ| ≤ length + 2·largest in _prepare, and V = reach + 3 in the 1/f tail bound.
+        widest = max(self.reach.values())
+        span = min(8 * largest + widest + 8, max(self.length + 2 * largest + 2, widest + 4))
         self.gamma = model.increment_autocovariance(span)
         flicker = "flicker" in model.terms()
         self.flicker_gamma = increment_autocovariance("flicker", span if flicker else 1, model.flicker_d)
