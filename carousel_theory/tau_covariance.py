@@ -211,10 +211,15 @@ def _lag_window(model: NoiseModel, m_i: int, m_j: int) -> int:
     if "flicker" in terms:
         reach = FLICKER_REACH * (m_i + m_j) + 64
     if "ar" in terms:
-        rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -np.asarray(model.ar_coefficients)))))))
-        if rho > 0:
-            reach = max(reach, int(math.log(AR_TRUNCATION) / math.log(rho)) + len(model.ar_coefficients) + 2)
+        reach = max(reach, _ar_reach(tuple(model.ar_coefficients)))
     return reach
+
+
+@functools.lru_cache(maxsize=64)
+def _ar_reach(coefficients: tuple[float, ...]) -> int:
+    """Lags beyond which the AR envelope ρ^k is below AR_TRUNCATION (ρ the largest root modulus)."""
+    rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -np.asarray(coefficients)))))))
+    return int(math.log(AR_TRUNCATION) / math.log(rho)) + len(coefficients) + 2 if rho > 0 else 0
 
 
 def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, count: int) -> float:
@@ -256,8 +261,10 @@ class _LongMemory:
         # No offset δ between two differences exceeds the record; A_j is needed down to δ − 2m_i + 2.
         self.low = max(-4 * m_j - reach, -self.length - 2 * m_j)
         high = min(2 * m_j + reach, self.length)
-        lags = np.abs(np.arange(self.low, high + 2 * m_j - 1))
-        self.correlated = _twice_moving_sum(self.gamma[lags], m_j)  # γ_z ⋆ g_j, g_j = B_{m_j} ⋆ B_{m_j}
+        end = high + 2 * m_j - 1  # γ_z at |x| for x = low … end − 1, as two slices (γ_z is even)
+        negative = self.gamma[-self.low : 0 : -1] if self.low < 0 else self.gamma[:0]
+        window = np.concatenate((negative, self.gamma[max(self.low, 0) : end]))
+        self.correlated = _twice_moving_sum(window, m_j)  # γ_z ⋆ g_j, g_j = B_{m_j} ⋆ B_{m_j}
         self.j = m_j
 
     def cross_covariance(self, m_i: int, m_j: int, first: int, last: int) -> np.ndarray:
@@ -312,15 +319,16 @@ def _counted_square_sum(c: np.ndarray, first: int, K_i: int, K_j: int, ramp: np.
     """Σ_δ N_ij(δ) c(δ)² for δ = first, first + 1, …: N_ij is linear between its breaks 0 and K_j − K_i,
     so each piece is N(s) Σ c² + slope Σ (δ − s) c² (no per-δ count array). einsum rather than np.dot:
     a threaded BLAS dot stalls on a loaded machine and gains nothing on one vector."""
-    squares = c * c
     last = first + len(c)
     breaks = sorted({first, last, *(b for b in (0, K_j - K_i) if first < b < last)})
     total = 0.0
     for start, stop in itertools.pairwise(breaks):
-        piece = squares[start - first : stop - first]
+        piece = c[start - first : stop - first]
         count = _pair_count(start, K_i, K_j)
         slope = _pair_count(start + 1, K_i, K_j) - count if stop - start > 1 else 0
-        total += count * float(np.sum(piece)) + slope * float(np.einsum("i,i->", ramp[: stop - start], piece))
+        total += count * float(np.einsum("i,i->", piece, piece))
+        if slope:
+            total += slope * float(np.einsum("i,i,i->", ramp[: stop - start], piece, piece))
     return total
 
 
@@ -343,8 +351,10 @@ def _column_lag_sums(memory: _LongMemory, sizes: list[int], terms: list[int]) ->
     for i, (m_i, K_i) in enumerate(zip(sizes, terms, strict=True)):
         if i > 0 and m_i == 2 * sizes[i - 1]:
             m, length = sizes[i - 1], len(values)
-            values = values[2 * m :] + 2.0 * values[m : length - m] + values[: length - 2 * m]
-            first += 2 * m
+            doubled = np.multiply(values[m : length - m], 2.0)
+            doubled += values[2 * m :]
+            doubled += values[: length - 2 * m]
+            values, first = doubled, first + 2 * m
         else:
             values, first = memory.cross_covariance(m_i, m_j, starts[i], top), starts[i]
         low, high, reach = windows[i]
