@@ -371,28 +371,13 @@ def _terms_count(sizes: np.ndarray, length: int, estimator: str) -> np.ndarray:
     return length - 2 * sizes + 1 if estimator == "overlapping" else length // sizes - 1
 
 
-def allan_estimate_covariance(
-    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping"
-) -> TauCovariance:
-    """Covariance of the Allan variance estimates at m = ``tau_samples`` in a record of ``length`` samples.
-
-    Exact in closed form for white, rate random walk and quantization with the overlapping estimator;
-    exact finite lag sums for AR and the non-overlapping estimator; 1/f by a finite lag sum with the
-    tail bounded (module text). For the non-overlapping estimator every m must divide the larger ones.
-    """
-    sizes = np.asarray(tau_samples, dtype=np.int64)
-    if estimator not in ("overlapping", "non-overlapping"):
-        raise ValueError(f"estimator={estimator!r}: must be 'overlapping' or 'non-overlapping'")
-    if not model.terms():
-        raise ValueError(f"model={model!r}: the model has no noise component")
-    if estimator == "non-overlapping" and any(int(b) % int(a) for a in sizes for b in sizes if b >= a):
-        raise ValueError(
-            f"tau_samples={sizes!r}: for the non-overlapping estimator each cluster size must divide the "
-            "larger ones (use octave τ)"
-        )
-    terms = _terms_count(sizes, int(length), estimator)
+def _covariance_matrix(
+    model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
+) -> tuple[np.ndarray, np.ndarray]:
+    """(Σ N c² / scale, tail bound / scale) for every pair of non-decreasing ``sizes``."""
+    terms = _terms_count(sizes, length, estimator)
     long_terms = any(name in model.terms() for name in ("flicker", "ar"))
-    memory = _LongMemory(model, sizes, int(length)) if long_terms or estimator != "overlapping" else None
+    memory = _LongMemory(model, sizes, length) if long_terms or estimator != "overlapping" else None
     count = len(sizes)
     covariance, bound = np.empty((count, count)), np.zeros((count, count))
     by_column = memory is not None and estimator == "overlapping" and bool(np.all(np.diff(sizes) > 0))
@@ -413,6 +398,32 @@ def allan_estimate_covariance(
             scale = 2.0 * float(m_i) ** 2 * float(m_j) ** 2 * K_i * K_j
             covariance[i, j] = covariance[j, i] = total / scale
             bound[i, j] = bound[j, i] = tail / scale
+    return covariance, bound
+
+
+def allan_estimate_covariance(
+    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping"
+) -> TauCovariance:
+    """Covariance of the Allan variance estimates at m = ``tau_samples`` in a record of ``length`` samples.
+
+    Exact in closed form for white, rate random walk and quantization with the overlapping estimator;
+    exact finite lag sums for AR and the non-overlapping estimator; 1/f by a finite lag sum with the
+    tail bounded (module text). For the non-overlapping estimator every m must divide the larger ones.
+    """
+    sizes = np.asarray(tau_samples, dtype=np.int64)
+    if estimator not in ("overlapping", "non-overlapping"):
+        raise ValueError(f"estimator={estimator!r}: must be 'overlapping' or 'non-overlapping'")
+    if not model.terms():
+        raise ValueError(f"model={model!r}: the model has no noise component")
+    if estimator == "non-overlapping" and any(int(b) % int(a) for a in sizes for b in sizes if b >= a):
+        raise ValueError(
+            f"tau_samples={sizes!r}: for the non-overlapping estimator each cluster size must divide the "
+            "larger ones (use octave τ)"
+        )
+    order = np.argsort(sizes, kind="stable")  # summed in increasing τ (the window of A_j covers m_i ≤ m_j)
+    ascending, inverse = sizes[order], np.argsort(order)
+    covariance, bound = _covariance_matrix(model, ascending, int(length), estimator)
+    covariance, bound = covariance[np.ix_(inverse, inverse)], bound[np.ix_(inverse, inverse)]
     allan = model.allan_variance(sizes)
     edf = 2.0 * allan**2 / np.diag(covariance)
     return TauCovariance(sizes, covariance, allan, edf, bound, estimator)
