@@ -363,8 +363,9 @@ def yule_walker(x: Any, sample_rate: float, maximum_order: int) -> tuple[float, 
     window = max(1001, round(10 * float(sample_rate)) | 1)
     fast = samples - uniform_filter1d(samples, window, mode="nearest")
     n = len(fast)
-    spectrum = np.fft.rfft(fast, 2 * n)
-    autocovariance = np.fft.irfft(spectrum * np.conj(spectrum), 2 * n)[: maximum_order + 1] / n
+    lags = range(min(maximum_order, n - 1) + 1)  # Σ_t x_t x_{t+k} / n, only the lags Levinson–Durbin needs
+    autocovariance = np.array([np.einsum("i,i->", fast[: n - k], fast[k:]) for k in lags]) / n
+    autocovariance = np.concatenate((autocovariance, np.zeros(maximum_order + 1 - len(autocovariance))))
     order = 0
     for p in range(1, maximum_order + 1):
         coefficients = solve_toeplitz(autocovariance[:p], autocovariance[1 : p + 1])
