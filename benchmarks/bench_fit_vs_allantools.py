@@ -69,8 +69,9 @@ def _pair_by_pair_check(size: int) -> None:
     def pairs() -> np.ndarray:
         memory = _LongMemory(TRUTH, sizes, size)
         result = np.empty((len(sizes), len(sizes)))
-        for j, (m_j, K_j) in enumerate(zip(sizes.tolist(), terms.tolist(), strict=True)):
-            for i, (m_i, K_i) in enumerate(zip(sizes[: j + 1].tolist(), terms[: j + 1].tolist(), strict=True)):
+        pairs_of_sizes = list(zip(sizes.tolist(), terms.tolist(), strict=True))
+        for j, (m_j, K_j) in enumerate(pairs_of_sizes):
+            for i, (m_i, K_i) in enumerate(pairs_of_sizes[: j + 1]):
                 total = _lag_sum(memory, m_i, m_j, K_i, K_j, "overlapping")[0]
                 result[i, j] = result[j, i] = total / (2.0 * m_i**2 * m_j**2 * K_i * K_j)
         return result
