@@ -275,7 +275,9 @@ class _LongMemory:
 
 
 def _twice_moving_sum(values: np.ndarray, m: int) -> np.ndarray:
-    """The triangle g_m = B_m ⋆ B_m applied as two moving sums of length m (cumulative sums)."""
+    """The triangle g_m = B_m ⋆ B_m applied as two moving sums of length m (cumulative sums); g_1 = (1)."""
+    if m == 1:
+        return values
     for _ in range(2):
         cumulative = np.empty(len(values) + 1)
         cumulative[0] = 0.0
