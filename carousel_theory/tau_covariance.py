@@ -26,8 +26,11 @@ Exact closed form (white, rate random walk, quantization; overlapping estimator)
 
 Exact finite sums (1/f, AR, and the non-overlapping estimator)
     c_ij(δ) is computed on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is
-    correlated with the triangle g_j once per τ_j (one FFT), and g_i = B_{m_i}⋆B_{m_i} is applied to
-    that as two moving sums. T: for AR, the lag beyond which the geometric envelope is below
+    correlated with the triangle g_j once per τ_j, and g_i = B_{m_i}⋆B_{m_i} is applied to that, each
+    as two moving sums (cumulative sums). The τ are summed in increasing order, column by column; along
+    an octave step B_{2m} = B_m (1 + x^m) gives c_{2m,j}(δ) = c_{m,j}(δ) + 2 c_{m,j}(δ − m) + c_{m,j}(δ − 2m),
+    three additions per lag. N_ij is linear between its breaks, so Σ N c² is two sums per piece.
+    T: for AR, the lag beyond which the geometric envelope is below
     :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j).
     The 1/f tail beyond the window is bounded, not dropped silently: for k ≥ 1, γ_z(k) < 0 and
     |γ_z(k)| decreases, with |γ_z(k)| ≤ |γ_z(V)| ((V + 2 − d)/(k + 2 − d))^{3−2d} (from the ratio
