@@ -14,6 +14,7 @@ import numpy as np
 
 from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording, result_as_json
 from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_noise_model
+from carousel_theory.output_files import plan_outputs, write_text_atomic
 from carousel_theory.progress import progress
 from carousel_theory.units import BIAS_INSTABILITY_FACTOR, bias_instability_from_allan_minimum
 
@@ -304,6 +305,7 @@ def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argpars
 def run(args: argparse.Namespace) -> int:
     if args.iterations < 1:
         raise ValueError(f"--iterations={args.iterations!r}: must be >= 1")
+    plan_outputs([(args.plot, "file"), (args.markdown, "file")], inputs=args.data)
     files = [_fit_file(path, args) for path in args.data]
     if args.plot:
         recording, fits = files[0]
@@ -315,8 +317,7 @@ def run(args: argparse.Namespace) -> int:
             models,
         )
     if args.markdown:
-        args.markdown.parent.mkdir(parents=True, exist_ok=True)
-        args.markdown.write_text(markdown_report(files, args), encoding="utf-8")
+        write_text_atomic(args.markdown, markdown_report(files, args))
     if args.json:
         document = {
             "files": [
