@@ -4,7 +4,6 @@ TIM 2014 Table III's units; optionally a plot and a markdown report over several
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from pathlib import Path
@@ -14,6 +13,7 @@ import numpy as np
 
 from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording, result_as_json
 from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_noise_model
+from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
 from carousel_theory.progress import progress
 from carousel_theory.units import BIAS_INSTABILITY_FACTOR, bias_instability_from_allan_minimum
@@ -108,6 +108,21 @@ def _measured_bias_instability(fit: FitResult) -> tuple[float, float, float, flo
     )
 
 
+#: Why a standard error is null in ``fit --json``: a term held at zero has none (see ``at_bound``).
+FIT_NULL_REASONS = {
+    **dict.fromkeys(
+        ("white_variance", "rrw_variance", "flicker_variance", "flicker_d", "quantization", "ar_variance"),
+        "no standard error: the term is held at zero, the bound of its range (listed in at_bound)",
+    ),
+    "standard_error": "no standard error: the parameter comes from a term held at zero (see at_bound)",
+}
+
+
+def _with_errors(parameters: dict[str, tuple[float, float]]) -> dict[str, dict[str, float]]:
+    """``{name: {"value", "standard_error"}}``: an object per parameter, so a null error has its reason."""
+    return {key: {"value": value, "standard_error": error} for key, (value, error) in parameters.items()}
+
+
 def fit_as_json(fit: FitResult) -> dict[str, Any]:
     model = fit.model
     return {
@@ -123,8 +138,8 @@ def fit_as_json(fit: FitResult) -> dict[str, Any]:
             "ar_coefficients": list(model.ar_coefficients),
         },
         "standard_errors": dict(fit.standard_errors),
-        "field_units": {key: list(value) for key, value in fit.field_units().items()},
-        "paper_units": {key: list(value) for key, value in fit.paper_units().items()},
+        "field_units": _with_errors(fit.field_units()),
+        "paper_units": _with_errors(fit.paper_units()),
         "chi_square": fit.chi_square,
         "degrees_of_freedom": fit.degrees_of_freedom,
         "p_value": fit.p_value,
@@ -328,8 +343,7 @@ def run(args: argparse.Namespace) -> int:
                 for recording, fits in files
             ]
         }
-        json.dump(document, sys.stdout, indent=1)
-        print()
+        sys.stdout.write(strict_json(json_document("fit", document, FIT_NULL_REASONS)))
         return 0
     for recording, fits in files:
         print(f"{recording.source}: {len(recording)} samples at {recording.sample_rate:g} Hz")

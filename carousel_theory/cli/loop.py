@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import argparse
-import json
 from pathlib import Path
 
 from carousel_theory.cli._recording_options import add_recording_options
 from carousel_theory.closed_loop import DEFAULT_ALPHA, run_loop, write_report
 from carousel_theory.closed_loop.report import REPORT_FILES
 from carousel_theory.data import load_recording
+from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
 
 
@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
     for note in result.observations:
         print(f"note: {note}")
     if args.json is not None:
-        write_text_atomic(args.json, json.dumps(result.as_dict(), indent=1, sort_keys=False) + "\n")
+        write_text_atomic(args.json, strict_json(json_document("loop", result.as_dict())))
         print(f"wrote {args.json}")
     if args.report is not None:
         written = write_report(result, args.report)
