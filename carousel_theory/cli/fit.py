@@ -287,31 +287,45 @@ def _consistency_section(files: list[tuple[Any, dict[str, FitResult]]], axes: li
     ]:
         cells = []
         for axis in axes:
-            values = []
-            for _, fits in files:
-                table = fits[axis].paper_units() if kind == "paper" else fits[axis].field_units()
-                if key in table:
-                    values.append(table[key])
-            cells.append(_consistency(values) if len(values) == len(files) else "—")
+            present = [fits[axis] for _, fits in files if axis in fits]  # runs may hold different axes
+            tables = [fit.paper_units() if kind == "paper" else fit.field_units() for fit in present]
+            values = [table[key] for table in tables if key in table]
+            cells.append(_consistency(values) if len(values) == len(present) >= 2 else "—")
         if any(cell != "—" for cell in cells):
             lines.append(_row(label, unit, cells))
-    return [*lines, ""]
+    return [*lines, "", *_missing_axes_note(files, axes)]
+
+
+def _missing_axes_note(files: list[tuple[Any, dict[str, FitResult]]], axes: list[str]) -> list[str]:
+    """Which recordings lack an axis (its consistency uses the runs that have it)."""
+    missing = {
+        axis: [Path(recording.source).name for recording, fits in files if axis not in fits] for axis in axes
+    }
+    notes = [f"{axis}: not in {', '.join(names)}" for axis, names in missing.items() if names]
+    return (
+        [f"Axes missing from some runs (their consistency uses the other runs): {'; '.join(notes)}.", ""]
+        if notes
+        else []
+    )
 
 
 def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argparse.Namespace) -> str:
     """The Table III-style report: one table per recording and a run-to-run consistency table."""
     lines = _report_header(files, args)
-    axes = list(files[0][1])
+    axes = list(
+        dict.fromkeys(name for _, fits in files for name in fits)
+    )  # every axis of every run, in order
     for recording, fits in files:
         lines += [
             f"## {Path(recording.source).name}",
             "",
             f"{len(recording)} samples at {recording.sample_rate:g} Hz ({recording.duration / 3600:.3g} h).",
             "",
-            "| parameter | unit | " + " | ".join(axes) + " |",
-            "|---|---|" + "---|" * len(axes),
+            "| parameter | unit | " + " | ".join(fits) + " |",
+            "|---|---|" + "---|" * len(fits),
         ]
-        lines += _parameter_rows(fits, axes, args) + _data_rows(fits, axes) + _verdict_lines(fits, axes)
+        own = list(fits)
+        lines += _parameter_rows(fits, own, args) + _data_rows(fits, own) + _verdict_lines(fits, own)
     if len(files) > 1:
         lines += _consistency_section(files, axes)
     return "\n".join(lines)
