@@ -331,9 +331,24 @@ def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argpars
     return "\n".join(lines)
 
 
+def _check_fit_options(args: argparse.Namespace) -> None:
+    """Options that would be ignored or misread are refused instead (issue: silently ignored options)."""
+    for name in ("tau_min", "tau_max"):
+        value = getattr(args, name)
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise ValueError(f"--{name.replace('_', '-')}={value!r}: must be a positive number of seconds")
+    if args.tau_min is not None and args.tau_max is not None and args.tau_min >= args.tau_max:
+        raise ValueError(f"--tau-min={args.tau_min!r}: must be below --tau-max={args.tau_max!r}")
+    if args.flicker_d is not None and "flicker" not in args.model:
+        raise ValueError(
+            f"--flicker-d={args.flicker_d!r}: only with 'flicker' in --model (got {args.model!r})"
+        )
+
+
 def run(args: argparse.Namespace) -> int:
     if args.iterations < 1:
         raise ValueError(f"--iterations={args.iterations!r}: must be >= 1")
+    _check_fit_options(args)
     plan_outputs([(args.plot, "file"), (args.markdown, "file")], inputs=args.data)
     files = [_fit_file(path, args) for path in args.data]
     if args.plot:

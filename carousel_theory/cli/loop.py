@@ -69,6 +69,8 @@ def run(args: argparse.Namespace) -> int:
             for ours, theirs in args.column
         }
     axes = None if args.axes is None else tuple(a.strip() for a in args.axes.split(",") if a.strip())
+    if axes is not None and len(set(axes)) != len(axes):
+        raise ValueError(f"--axes={args.axes!r}: names an axis twice; give each gyro axis once")
     report_files = [] if args.report is None else [args.report / name for name in REPORT_FILES]
     plan_outputs(
         [(args.json, "file"), (args.report, "directory"), *((path, "file") for path in report_files)],
