@@ -12,10 +12,9 @@ from typing import Any
 import numpy as np
 
 from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording, result_as_json
-from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_noise_model
+from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
-from carousel_theory.progress import progress
 from carousel_theory.units import BIAS_INSTABILITY_FACTOR, bias_instability_from_allan_minimum
 
 #: Rows of the Table III-style summary: (key, label, unit, source of the value).
@@ -79,20 +78,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitResult]]:
     recording = read_recording(path, args)
-    tau_range = None
-    if args.tau_min is not None or args.tau_max is not None:
-        tau_range = (args.tau_min or 1.0 / recording.sample_rate, args.tau_max or recording.duration)
-    fits = {}
-    for name, rates in progress(recording.rates.items(), len(recording.rates), f"fit {path.name}: axes"):
-        fits[name] = fit_noise_model(
-            rates,
-            recording.sample_rate,
-            args.model,
-            flicker_d=args.flicker_d,
-            tau_range=tau_range,
-            estimator=args.estimator,
-            iterations=args.iterations,
-        )
+    fits = fit_recording(
+        recording,
+        args.model,
+        tau_min=args.tau_min,
+        tau_max=args.tau_max,
+        label=f"fit {path.name}: axes",
+        flicker_d=args.flicker_d,
+        estimator=args.estimator,
+        iterations=args.iterations,
+    )
     return recording, fits
 
 
