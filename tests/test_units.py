@@ -130,13 +130,19 @@ def test_unit_names():
             lambda: units.white_variance_from_angle_random_walk(-0.1, 100.0), ValueError, "arw", id="arw<0"
         ),
         pytest.param(
-            lambda: units.white_variance_from_angle_random_walk(0.1, 0.0), ValueError, "sample_rate", id="fs=0"
+            lambda: units.white_variance_from_angle_random_walk(0.1, 0.0),
+            ValueError,
+            "sample_rate",
+            id="fs=0",
         ),
         pytest.param(
             lambda: units.rrw_variance_from_rate_random_walk(math.nan, 1.0), ValueError, "rrw", id="rrw-nan"
         ),
         pytest.param(
-            lambda: units.flicker_variance_from_bias_instability("3"), TypeError, "bias_instability", id="bi-str"
+            lambda: units.flicker_variance_from_bias_instability("3"),
+            TypeError,
+            "bias_instability",
+            id="bi-str",
         ),
         pytest.param(lambda: units.display_unit("furlong"), ValueError, "unit=", id="unknown-unit-name"),
         pytest.param(lambda: units.square_unit("rpm"), ValueError, "units=", id="unknown-square"),
