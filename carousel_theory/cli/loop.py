@@ -142,10 +142,7 @@ def run(args: argparse.Namespace) -> int:
         recording, samples_per_revolution=args.samples_per_revolution, axes=axes, alpha=args.alpha
     )
     print(f"{result.source}: effects {', '.join(result.effects)}")
-    print(
-        f"{result.metric} (no unit): {result.error_before:.4g} before, "
-        f"{result.error_after:.4g} after"
-    )
+    print(f"{result.metric} (no unit): {result.error_before:.4g} before, {result.error_after:.4g} after")
     print("\n".join(model_lines(result, output_units(args))))
     for note in result.observations:
         print(f"note: {note}")
