@@ -51,33 +51,37 @@ def _sqrt_error(value: float, variance_error: float) -> float:
     return variance_error / (2.0 * value) if value > 0 else math.nan
 
 
+#: (field key of FitResult.field_units, name, description, conventional unit, SI unit, 1 conventional in SI).
+_DENSITIES = (
+    (
+        "angle_random_walk_deg_per_sqrt_h",
+        "angle_random_walk",
+        "angle random walk N",
+        "deg/sqrt(h)",
+        "rad/sqrt(s)",
+        units.from_deg_per_sqrt_hour(1.0),
+    ),
+    (
+        "rate_random_walk_deg_per_h_per_sqrt_h",
+        "rate_random_walk",
+        "rate random walk K",
+        "deg/h/sqrt(h)",
+        "rad/s/sqrt(s)",
+        units.from_deg_per_hour_per_sqrt_hour(1.0),
+    ),
+)
+
+
 def _white_and_walk(fit: FitResult) -> list[NoiseParameter]:
     field = fit.field_units()
     found = []
-    if "angle_random_walk_deg_per_sqrt_h" in field:
-        value, error = field["angle_random_walk_deg_per_sqrt_h"]
-        conventional = Quantity(float(value), float(error), "deg/sqrt(h)")
-        to_si = units.from_deg_per_sqrt_hour(1.0)
-        found.append(
-            NoiseParameter(
-                "angle_random_walk",
-                "angle random walk N",
-                conventional.scaled(to_si, "rad/sqrt(s)"),
-                (conventional,),
+    for key, name, description, unit, si_unit, to_si in _DENSITIES:
+        if key in field:
+            value, error = field[key]
+            conventional = Quantity(float(value), float(error), unit)
+            found.append(
+                NoiseParameter(name, description, conventional.scaled(to_si, si_unit), (conventional,))
             )
-        )
-    if "rate_random_walk_deg_per_h_per_sqrt_h" in field:
-        value, error = field["rate_random_walk_deg_per_h_per_sqrt_h"]
-        conventional = Quantity(float(value), float(error), "deg/h/sqrt(h)")
-        to_si = units.from_deg_per_hour_per_sqrt_hour(1.0)
-        found.append(
-            NoiseParameter(
-                "rate_random_walk",
-                "rate random walk K",
-                conventional.scaled(to_si, "rad/s/sqrt(s)"),
-                (conventional,),
-            )
-        )
     return found
 
 
