@@ -113,6 +113,8 @@ UNIT_NAMES: dict[str, str] = {
     "deg/s*sample": "°/s·sample",
     "deg/h*sample": "°/h·sample",
     "deg": "°",
+    "degC": "°C",
+    "rad/s/degC": "rad/s/°C",
 }
 
 

@@ -57,39 +57,47 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(handler=run)
 
 
-#: Units of the members of each axis's model in the loop's JSON (its keys also spell them).
-MODEL_UNITS = {
+#: Units of the loop's JSON members by name (most names spell their unit; ``amplitude`` and ``height`` are
+#: rate amplitudes of the fitted effects). A member not listed is dimensionless (z, χ², p, counts).
+LOOP_UNITS = {
     "bias_rad_s": "rad/s",
     "white_variance_rad2_s2": "(rad/s)^2",
     "long_run_white_variance_rad2_s2": "(rad/s)^2",
     "rrw_variance_rad2_s2": "(rad/s)^2",
     "flicker_variance_rad2_s2": "(rad/s)^2",
-    "angle_random_walk_deg_per_sqrt_h": "deg/sqrt(h)",
-    "rate_random_walk_deg_per_h_per_sqrt_h": "deg/h/sqrt(h)",
-}
-ERROR_UNITS = {
     "long_run_white_variance": "(rad/s)^2",
     "white_variance": "(rad/s)^2",
     "rrw_variance": "(rad/s)^2",
     "flicker_variance": "(rad/s)^2",
+    "angle_random_walk_deg_per_sqrt_h": "deg/sqrt(h)",
+    "rate_random_walk_deg_per_h_per_sqrt_h": "deg/h/sqrt(h)",
+    "amplitude": "rad/s",
+    "height": "rad/s",
+    "frequency_hz": "Hz",
+    "phase_rad": "rad",
+    "time_s": "s",
+    "time_constant_s": "s",
+    "coefficient_rad_s_per_degC": "rad/s/degC",
+    "temperature_range_degC": "degC",
 }
 
 
-def _model_with_units(model: dict[str, Any]) -> dict[str, Any]:
-    """One axis's model with the ``units`` maps of the JSON convention (README: JSON documents)."""
-    errors = dict(model.get("standard_errors", {}))
-    errors["units"] = {key: ERROR_UNITS[key] for key in errors if key in ERROR_UNITS}
-    present = {key: unit for key, unit in MODEL_UNITS.items() if key in model}
-    return {**model, "standard_errors": errors, "units": present}
+def with_units(value: Any) -> Any:
+    """``value`` with a ``units`` map added to every object holding a member of :data:`LOOP_UNITS` (the
+    JSON convention of the README)."""
+    if isinstance(value, list):
+        return [with_units(item) for item in value]
+    if not isinstance(value, dict):
+        return value
+    result = {key: with_units(item) for key, item in value.items()}
+    named = {key: LOOP_UNITS[key] for key, item in value.items() if key in LOOP_UNITS and item is not None}
+    return {**result, "units": named} if named else result
 
 
 def loop_document(result: Any, output: OutputUnits) -> dict[str, Any]:
-    """``loop --json``: the loop's result with units named on each axis's model (always SI: the keys
-    name their units); the headline errors are standardized, without unit."""
-    body = result.as_dict()
-    for key in ("model_before", "model_after"):
-        body[key] = {axis: _model_with_units(model) for axis, model in body[key].items()}
-    return {**body, "output_units": output.rate}
+    """``loop --json``: the loop's result with units named wherever a member has one (always SI: the
+    names spell their units); the headline errors are standardized, without unit."""
+    return {**with_units(result.as_dict()), "output_units": output.rate}
 
 
 def model_lines(result: Any, output: OutputUnits) -> list[str]:
