@@ -26,11 +26,27 @@ def _strict(text: str) -> dict:
     return json.loads(text, parse_constant=refuse)
 
 
+def _check_units_maps(value: object) -> int:
+    """Every ``units`` map, at any depth, names sibling members and known units; returns how many."""
+    if isinstance(value, list):
+        return sum(_check_units_maps(item) for item in value)
+    if not isinstance(value, dict):
+        return 0
+    found = 0
+    if isinstance(value.get("units"), dict):
+        for key, unit in value["units"].items():
+            assert key in value, f"units names {key!r}, which is not a sibling member"
+            assert unit in UNIT_NAMES, f"{key}: unknown unit {unit!r}"
+        found = 1
+    return found + sum(_check_units_maps(item) for key, item in value.items() if key != "units")
+
+
 def _validate(document: dict) -> None:
     name = document["schema"].removeprefix("carousel-theory/")
     schema = json.loads((SCHEMAS / f"{name}.schema.json").read_text(encoding="utf-8"))
     jsonschema.Draft202012Validator.check_schema(schema)
     jsonschema.Draft202012Validator(schema).validate(document)
+    _check_units_maps(document)
 
 
 @pytest.fixture(scope="module")
@@ -69,6 +85,23 @@ def test_loop_document(recording, capsys, tmp_path):
     out = tmp_path / "loop.json"
     assert main(["loop", str(recording), "--json", str(out)]) == 0
     _validate(_strict(out.read_text(encoding="utf-8")))
+
+
+def test_loop_document_with_fitted_effects_names_their_units(tmp_path, capsys):
+    simulated = simulate_recording(
+        60_000, 100.0, rng=np.random.default_rng(2), white_variance=3.6e-5, effects=["sinusoid"]
+    )
+    data = write_recording(simulated, tmp_path / "sinusoid.csv")
+    out = tmp_path / "loop.json"
+    assert main(["loop", str(data), "--json", str(out)]) == 0
+    document = _strict(out.read_text(encoding="utf-8"))
+    _validate(document)
+    (fitted,) = [entry for entry in document["fitted_effects"] if entry["effect"] == "sinusoid"]
+    assert fitted["parameters"]["wx"]["units"] == {
+        "frequency_hz": "Hz",
+        "amplitude": "rad/s",
+        "phase_rad": "rad",
+    }
 
 
 def test_predict_document(recording, capsys, tmp_path):
