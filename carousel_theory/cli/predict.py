@@ -372,12 +372,19 @@ def _with_units(result: dict) -> dict:
 def _print_table(result: dict) -> None:
     from carousel_theory.bias_prediction_study import ROW_NAMES
 
-    blocks = [("", result)] if result["settings"]["kind"] == "simulated" else list(result["axes"].items())
+    simulated = result["settings"]["kind"] == "simulated"
+    blocks = [("", result)] if simulated else list(result["axes"].items())
+    print(
+        "IE and RSSE of simulated data have no unit (as in SJ 2012)"
+        if simulated
+        else "ours: IE in rad/s·sample (× Δt: the angle in rad), RSSE in rad/s; "
+        "paper: as SJ 2012 Table I prints them"
+    )
     for name, entry in blocks:
         if name:
             print(
-                f"[{name}] {entry['sections']} sections, σ_w² = {entry['driving_variance']:.4g}, "
-                f"σ_v² = {entry['white_variance']:.4g}"
+                f"[{name}] {entry['sections']} sections, σ_w² = {entry['driving_variance']:.4g} (rad/s)², "
+                f"σ_v² = {entry['white_variance']:.4g} (rad/s)²"
             )
         print(f"{'':10s} " + " ".join(f"{m + ' ours':>11s} {m + ' paper':>11s}" for m in ("KF", "MA", "CM")))
         for row, row_name in ROW_NAMES.items():
