@@ -235,6 +235,9 @@ def _angle(integrated_rad_per_s: float, sample_interval: float, unit: str) -> fl
     return angle if unit == "rad" else angle * 180.0 / np.pi
 
 
+#: Why ``measured`` holds nulls in the forecast JSON.
+_NOT_RECORDED = "null where the horizon runs past the end of the recording: not measured"
+
 #: Rows of forecast CSV formatted at a time.
 _CSV_CHUNK = 65_536
 
@@ -273,6 +276,8 @@ def _write_forecast(path: Path, rows: dict, model, axis: str, source: str, outpu
                 "units": {"time_s": "s", **dict.fromkeys(_RATE_COLUMNS, output.rate)},
             },
         }
+        if not np.isfinite(rows["measured"]).all():
+            payload["columns"]["measured_null_reason"] = _NOT_RECORDED
         write_text_atomic(path, strict_json(json_document("predict", payload)))
     elif suffix == ".csv":
         length = len(next(iter(rows.values())))
