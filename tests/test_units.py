@@ -151,3 +151,13 @@ def test_unit_names():
 def test_invalid_datasheet_calls(call, error, match):
     with pytest.raises(error, match=match):
         call()
+
+
+def test_all_is_honest():
+    from conftest import public_functions
+
+    from carousel_theory import noise_parameters
+
+    for module in (units, noise_parameters):
+        assert public_functions(module) <= set(module.__all__)
+        assert all(hasattr(module, name) for name in module.__all__)
