@@ -6,6 +6,10 @@
 * **Versioned**: every document starts with ``schema`` (its name, e.g. ``carousel-theory/fit``),
   ``schema_version`` (changed whenever the layout changes incompatibly) and ``carousel_theory_version``.
   The layout of each document is a JSON Schema under ``docs/schemas/<name>.schema.json``.
+* **Units named**: an object whose members carry a physical unit has a member ``units`` mapping each such
+  member's name to its unit (an ASCII name of :data:`carousel_theory.units.UNIT_NAMES`); a member holding
+  ``{value, standard_error}`` or an array has one unit for all its numbers; a member not named in
+  ``units`` is dimensionless.
 """
 
 from __future__ import annotations

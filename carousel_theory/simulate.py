@@ -31,10 +31,18 @@ from carousel_theory.data import RESERVED_COLUMN_NAMES, Recording, recording_fro
 from carousel_theory.effects import CATALOGUE, check_effect_parameters
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel
 from carousel_theory.processes import sample_flicker, sample_rate_random_walk, sample_white
+from carousel_theory.units import (
+    flicker_variance_from_bias_instability,
+    from_arcseconds,
+    from_microradians,
+    rrw_variance_from_rate_random_walk,
+    white_variance_from_angle_random_walk,
+)
 
 __all__ = [
     "MAX_SIMULATED_SAMPLES",
     "OUTSIDE_CATALOGUE",
+    "Datasheet",
     "Injection",
     "default_temperature_profile",
     "parse_injection",
@@ -75,6 +83,49 @@ def sample_noise(model: NoiseModel, length: int, *, rng: np.random.Generator) ->
         innovations = np.sqrt(float(model.ar_variance)) * rng.standard_normal(length + burn)
         y += lfilter([1.0], np.concatenate(([1.0], -phi)), innovations)[burn:]
     return y
+
+
+@dataclass(frozen=True)
+class Datasheet:
+    """Noise figures as a gyro datasheet states them, in IEEE Std 952's units (0 = term absent).
+
+    Attributes
+    ----------
+    angle_random_walk : float
+        ARW N in °/√h (white rate noise; σ_A²(τ) = N²/τ).
+    bias_instability : float
+        B in °/h (1/f rate noise; flat σ_A = √(2 ln 2/π)·B = 0.664·B), simulated as the 1/f term of
+        TIM 2014 eq. (3) at d = 1/2.
+    rate_random_walk : float
+        RRW K in °/h/√h (σ_A²(τ) = K²τ/3).
+    quantization : float
+        Angle quantization Q in ``quantization_unit`` (σ_A²(τ) = 3Q²/τ²).
+    quantization_unit : str
+        ``"urad"`` (µrad, default) or ``"arcsec"``.
+    """
+
+    angle_random_walk: float = 0.0
+    bias_instability: float = 0.0
+    rate_random_walk: float = 0.0
+    quantization: float = 0.0
+    quantization_unit: str = "urad"
+
+    def noise_model(self, sample_rate: float, bias: float = 0.0) -> NoiseModel:
+        """The per-sample model at ``sample_rate`` Hz (:mod:`carousel_theory.units`' inverse conversions)."""
+        if self.quantization_unit not in ("urad", "arcsec"):
+            raise ValueError(f"quantization_unit={self.quantization_unit!r}: must be 'urad' or 'arcsec'")
+        to_radians = from_microradians if self.quantization_unit == "urad" else from_arcseconds
+        if not (math.isfinite(self.quantization) and self.quantization >= 0):
+            raise ValueError(f"quantization={self.quantization!r}: must be a finite number >= 0")
+        return NoiseModel(
+            sample_rate=float(check_positive_real("sample_rate", sample_rate)),
+            bias=bias,
+            white_variance=white_variance_from_angle_random_walk(self.angle_random_walk, sample_rate),
+            rrw_variance=rrw_variance_from_rate_random_walk(self.rate_random_walk, sample_rate),
+            flicker_variance=flicker_variance_from_bias_instability(self.bias_instability),
+            flicker_d=0.5,
+            quantization=to_radians(self.quantization),
+        )
 
 
 def _sawtooth(time: np.ndarray, amplitude: float = 1e-3, period: float = 60.0) -> np.ndarray:
@@ -118,6 +169,10 @@ def parse_injection(text: str) -> Injection:
     injection = Injection(name.strip(), parameters)
     _resolved_parameters(injection)
     return injection
+
+
+def _injection(effect: Injection | str) -> Injection:
+    return parse_injection(effect) if isinstance(effect, str) else effect
 
 
 def _resolved_parameters(injection: Injection) -> dict[str, float]:
@@ -262,6 +317,9 @@ def _simulate_axis(
         signal = signal + sample_flicker(
             samples, rng=rng, d=declared.flicker_d, variance=declared.flicker_variance
         )
+    if declared.quantization:  # a white angle error of variance Q², differenced into the rate
+        angle = declared.quantization * rng.standard_normal(samples + 1)
+        signal = signal + declared.sample_rate * np.diff(angle)
     for name, parameters in resolved:
         if name in OUTSIDE_CATALOGUE:
             signal = signal + OUTSIDE_CATALOGUE[name][0](time, **parameters)
@@ -284,6 +342,7 @@ def simulate_recording(
     rrw_variance: float = 0.0,
     flicker_variance: float = 0.0,
     flicker_d: float = 0.5,
+    quantization: float = 0.0,
     axes: Sequence[str] = ("wx", "wy"),
     effects: Sequence[Injection | str] = (),
     temperature: Any = "auto",
@@ -294,34 +353,33 @@ def simulate_recording(
 
     Parameters
     ----------
-    samples, sample_rate, max_samples
-        Length and rate (Hz) of the recording; more than ``max_samples`` samples are refused.
-    rng
-        The only source of randomness.
+    samples, sample_rate, max_samples, rng
+        Length and rate (Hz) of the recording (more than ``max_samples`` samples are refused); ``rng``,
+        the only source of randomness.
     bias
         Constant bias b (rad/s) of TIM 2014 eq. (1), one value or one per axis.
-    white_variance, rrw_variance, flicker_variance, flicker_d
+    white_variance, rrw_variance, flicker_variance, flicker_d, quantization
         Per-sample variances (rad/s)² of white noise, of the rate-random-walk increments (eq. (2)) and of
-        the 1/f driving noise (eq. (3), order ``flicker_d``). Each axis gets independent draws.
-    axes
-        Names of the gyro axes.
-    effects
-        Undeclared effects: :class:`Injection` objects or strings ``"name:key=value,..."``.
+        the 1/f driving noise (eq. (3), order ``flicker_d``); angle quantization Q (rad), a white angle
+        error differenced into the rate. Each axis gets independent draws. :meth:`Datasheet.noise_model`
+        gives them from datasheet figures (°/√h, °/h, °/h/√h, µrad or arcsec).
+    axes, effects
+        Names of the gyro axes; undeclared effects, :class:`Injection` objects or ``"name:key=value,..."``.
     temperature
-        ``"auto"``: the :func:`default_temperature_profile` column (always present, whether or not a
-        temperature effect is injected, so that a clean recording also has one); ``None``: no column;
-        or an array of °C.
+        ``"auto"``: the :func:`default_temperature_profile` column (present even without a temperature
+        effect, so that a clean recording also has one); ``None``: no column; or an array of °C.
     samples_per_revolution
         When given, a ``phi`` column of a uniform rotation with this many samples per revolution,
         φ_i = 2π i / N (TIM 2014 eq. (6)); the rates stay those of a static sensor.
     """
     samples, sample_rate = _check_size_rate_generator(samples, sample_rate, rng, max_samples)
     biases = _axis_biases(axes, bias)
-    injections = [parse_injection(e) if isinstance(e, str) else e for e in effects]
-    resolved = [(i.name, _resolved_parameters(i)) for i in injections]
+    resolved = [(i.name, _resolved_parameters(i)) for i in map(_injection, effects)]
     time = np.arange(samples, dtype=np.float64) / sample_rate
     temperature_column = _temperature_column(temperature, time, resolved)
-    declared = NoiseModel(sample_rate, 0.0, white_variance, rrw_variance, flicker_variance, flicker_d)
+    declared = NoiseModel(
+        sample_rate, 0, white_variance, rrw_variance, flicker_variance, flicker_d, quantization
+    )
     rates = {
         axis: _simulate_axis(declared, biases[axis], time, temperature_column, resolved, rng) for axis in axes
     }

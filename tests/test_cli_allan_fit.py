@@ -79,7 +79,7 @@ def test_fit_json_markdown_and_plot(recording_csv, capsys, tmp_path):
 def test_fit_text_with_tau_range(recording_csv, capsys):
     assert main(["fit", str(recording_csv), "--tau-min", "0.04", "--model", "white,rrw"]) == 0
     out = capsys.readouterr().out
-    assert "angle_random_walk_deg_per_sqrt_h" in out and "(0.04 s" in out
+    assert "angle random walk N" in out and "°/√h" in out and "rad/√s" in out and "(0.04 s" in out
 
 
 BAD = [

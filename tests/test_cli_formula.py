@@ -29,7 +29,7 @@ def test_list_names_every_formula(capsys):
 def test_list_json(capsys):
     status, out, _ = run(capsys, "--list", "--json")
     assert status == 0
-    entries = json.loads(out)
+    entries = json.loads(out)["formulas"]
     assert [e["name"] for e in entries] == sorted(FORMULAS)
     by_name = {e["name"]: e for e in entries}
     assert by_name["rrw_average_cov"]["parameters"] == ["N", "a", "b"]

@@ -1,5 +1,6 @@
-"""``--json`` of allan, fit, loop and design: strict JSON (issue 13 point 10: no bare NaN when a term is
-held at zero) and a header naming the document, its layout version and the package version (issue 12)."""
+"""``--json`` of allan, fit, loop, design, predict, formula and graycode: strict JSON (issue 13 point 10:
+no bare NaN when a term is held at zero) and a header naming the document, its layout version and the
+package version (issue 12)."""
 
 from __future__ import annotations
 
@@ -72,3 +73,20 @@ def test_design_reads_the_strict_fit_json(white_only, tmp_path, capsys):
     document = _strict(capsys.readouterr().out)
     _header(document, "design")
     assert document["recommended"]
+
+
+def test_predict_formula_and_graycode_json_are_strict_and_versioned(white_only, tmp_path, capsys):
+    out = tmp_path / "forecast.json"
+    # 20 000 samples: a horizon from 19 500 runs 500 samples past the end, which are not measured.
+    argv = ["predict", str(white_only), "--start", "18500", "--calibration", "1000", "--horizon", "1000"]
+    assert main([*argv, "--output", str(out)]) == 0
+    document = _strict(out.read_text(encoding="utf-8"))
+    _header(document, "predict")
+    measured = document["columns"]["measured"]
+    assert measured[499] is not None and measured[500:] == [None] * 500
+    assert "past the end of the recording" in document["columns"]["measured_null_reason"]
+    capsys.readouterr()
+    assert main(["formula", "rrw_carousel_var", "--set", "N=6", "--json"]) == 0
+    _header(_strict(capsys.readouterr().out), "formula")
+    assert main(["graycode", "--check-up-to", "3", "--json"]) == 0
+    _header(_strict(capsys.readouterr().out), "graycode")

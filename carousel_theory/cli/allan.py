@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 from typing import Any
@@ -11,6 +10,8 @@ from typing import Any
 import numpy as np
 
 from carousel_theory.allan import ESTIMATORS, NOISE_TYPES, AllanResult, allan_variance
+from carousel_theory.cli._fit_output import allan_record
+from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
 from carousel_theory.cli._recording_options import add_recording_options
 from carousel_theory.data import Recording, load_recording
 from carousel_theory.json_output import json_document, strict_json
@@ -80,19 +81,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="noise type behind the degrees of freedom (default white)",
     )
     parser.add_argument("--confidence", type=float, default=0.95, help="interval level (default 0.95)")
+    add_output_units_option(parser)
     parser.set_defaults(handler=run)
 
 
 def result_as_json(result: AllanResult) -> dict[str, Any]:
-    """The per-column JSON record: tau (s), avar, ci_low, ci_high, edf, clusters."""
-    return {
-        "tau": result.tau.tolist(),
-        "avar": result.avar.tolist(),
-        "ci_low": result.ci_low.tolist(),
-        "ci_high": result.ci_high.tolist(),
-        "edf": None if result.edf is None else result.edf.tolist(),
-        "clusters": result.clusters.tolist(),
-    }
+    """The per-column JSON record in rad/s: tau (s), avar, ci_low, ci_high, edf, clusters, units."""
+    return allan_record(result, OutputUnits())
 
 
 def plot_allan(
@@ -138,6 +133,39 @@ def plot_allan(
     plt.close(figure)
 
 
+def _document(
+    recording: Recording, results: dict[str, AllanResult], args: argparse.Namespace
+) -> dict[str, Any]:
+    return {
+        "source": recording.source,
+        "sample_rate": recording.sample_rate,
+        "samples": len(recording),
+        "estimator": args.estimator,
+        "noise": args.noise,
+        "confidence": args.confidence,
+        "output_units": args.output_units,
+        "columns": {name: allan_record(result, output_units(args)) for name, result in results.items()},
+        "units": {"sample_rate": "Hz"},
+    }
+
+
+def _table_lines(name: str, result: AllanResult, args: argparse.Namespace) -> list[str]:
+    """τ, the Allan deviation and its interval in ``--output-units``, and the EDF, one row per τ."""
+    output = output_units(args)
+    deviation, low, high = (
+        output.rates(np.sqrt(values)) for values in (result.avar, result.ci_low, result.ci_high)
+    )
+    degrees = np.asarray(result.edf)
+    lines = [
+        f"\n{name}: τ (s), Allan deviation ({output.rate_label}), {100 * args.confidence:g} % interval "
+        f"({output.rate_label}), EDF"
+    ]
+    for i in range(len(result.tau)):
+        interval = f"[{low[i]:11.4e}, {high[i]:11.4e}]"
+        lines.append(f"  {result.tau[i]:12.6g}  {deviation[i]:12.5e}  {interval}  {degrees[i]:10.4g}")
+    return lines
+
+
 def run(args: argparse.Namespace) -> int:
     if not (0 < args.confidence < 1):
         raise ValueError(f"--confidence={args.confidence!r}: must be in (0, 1)")
@@ -156,30 +184,14 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         plot_allan(args.plot, results, f"{recording.source}: Allan deviation")
     if args.json:
-        document = {
-            "source": recording.source,
-            "sample_rate": recording.sample_rate,
-            "samples": len(recording),
-            "estimator": args.estimator,
-            "noise": args.noise,
-            "confidence": args.confidence,
-            "columns": {name: result_as_json(result) for name, result in results.items()},
-        }
-        sys.stdout.write(strict_json(json_document("allan", document)))
+        sys.stdout.write(strict_json(json_document("allan", _document(recording, results, args))))
         return 0
     print(
         f"{recording.source}: {len(recording)} samples at {recording.sample_rate:g} Hz, "
         f"{args.estimator} estimator"
     )
     for name, result in results.items():
-        degrees = np.asarray(result.edf)
-        print(f"\n{name}: τ (s), Allan deviation (rad/s), {100 * args.confidence:g} % interval, EDF")
-        for i in range(len(result.tau)):
-            print(
-                f"  {result.tau[i]:12.6g}  {math.sqrt(result.avar[i]):12.5e}  "
-                f"[{math.sqrt(result.ci_low[i]):11.4e}, {math.sqrt(result.ci_high[i]):11.4e}]  "
-                f"{degrees[i]:10.4g}"
-            )
+        print("\n".join(_table_lines(name, result, args)))
     if args.plot:
         print(f"\nwrote {args.plot}")
     return 0

@@ -237,18 +237,42 @@ def run(args: argparse.Namespace) -> int:
         for result in evaluate_scheme(scheme, usable, settings):
             results.append(result)
             record = asdict(result)
+            record["rate_variance_by_process"]["units"] = dict.fromkeys(
+                record["rate_variance_by_process"], "(rad/s)^2"
+            )
             if args.monte_carlo:
                 record.update(_monte_carlo(result, settings, args.monte_carlo, args.seed))
-            records.append(record)
+            records.append(
+                {**record, "units": {key: unit for key, unit in DESIGN_UNITS.items() if key in record}}
+            )
     best = recommended(results)
     if args.json:
-        body = {"schemes": records, "recommended": best, "latitude": settings.latitude}
+        body = {
+            "schemes": records,
+            "recommended": best,
+            "latitude": settings.latitude,
+            "units": {"latitude": "deg"},
+        }
         sys.stdout.write(strict_json(json_document("design", body)))
     else:
         _print_table(results, best)
     if args.plot is not None:
         _plot(args.plot, schemes, args.duration, settings)
     return 0
+
+
+#: Units of a scheme record's members in ``design --json`` (the JSON convention of the README).
+DESIGN_UNITS = {
+    "duration": "s",
+    "rate_variance": "(rad/s)^2",
+    "rate_covariance": "(rad/s)^2",
+    "rate_bias": "rad/s",
+    "heading_sigma_deg": "deg",
+    "heading_bias_deg": "deg",
+    "heading_rms_deg": "deg",
+    "monte_carlo_rms_deg": "deg",
+    "monte_carlo_rms_standard_error_deg": "deg",
+}
 
 
 def _fits(scheme: Any, duration: float, sample_rate: float) -> bool:

@@ -11,7 +11,9 @@ from typing import Any
 
 import numpy as np
 
-from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording, result_as_json
+from carousel_theory.cli._fit_output import FIT_NULL_REASONS, fit_as_json, fit_lines
+from carousel_theory.cli._output_units import add_output_units_option, output_units
+from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording
 from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
@@ -73,6 +75,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--markdown", type=Path, metavar="FILE.md", help="write a Table III-style markdown report"
     )
+    add_output_units_option(parser)
     parser.set_defaults(handler=run)
 
 
@@ -101,49 +104,6 @@ def _measured_bias_instability(fit: FitResult) -> tuple[float, float, float, flo
         bias_instability_from_allan_minimum(math.sqrt(allan.ci_low[best])),
         bias_instability_from_allan_minimum(math.sqrt(allan.ci_high[best])),
     )
-
-
-#: Why a standard error is null in ``fit --json``: a term held at zero has none (see ``at_bound``).
-FIT_NULL_REASONS = {
-    **dict.fromkeys(
-        ("white_variance", "rrw_variance", "flicker_variance", "flicker_d", "quantization", "ar_variance"),
-        "no standard error: the term is held at zero, the bound of its range (listed in at_bound)",
-    ),
-    "standard_error": "no standard error: the parameter comes from a term held at zero (see at_bound)",
-}
-
-
-def _with_errors(parameters: dict[str, tuple[float, float]]) -> dict[str, dict[str, float]]:
-    """``{name: {"value", "standard_error"}}``: an object per parameter, so a null error has its reason."""
-    return {key: {"value": value, "standard_error": error} for key, (value, error) in parameters.items()}
-
-
-def fit_as_json(fit: FitResult) -> dict[str, Any]:
-    model = fit.model
-    return {
-        "model": {
-            "sample_rate": model.sample_rate,
-            "bias": model.bias,
-            "white_variance": model.white_variance,
-            "rrw_variance": model.rrw_variance,
-            "flicker_variance": model.flicker_variance,
-            "flicker_d": model.flicker_d,
-            "quantization": model.quantization,
-            "ar_variance": model.ar_variance,
-            "ar_coefficients": list(model.ar_coefficients),
-        },
-        "standard_errors": dict(fit.standard_errors),
-        "field_units": _with_errors(fit.field_units()),
-        "paper_units": _with_errors(fit.paper_units()),
-        "chi_square": fit.chi_square,
-        "degrees_of_freedom": fit.degrees_of_freedom,
-        "p_value": fit.p_value,
-        "at_bound": list(fit.at_bound),
-        "method": fit.method,
-        "allan": result_as_json(fit.allan),
-        "model_avar": fit.model_avar.tolist(),
-        "used": fit.used.tolist(),
-    }
 
 
 def _format(value: float, error: float) -> str:
@@ -359,27 +319,21 @@ def run(args: argparse.Namespace) -> int:
         write_text_atomic(args.markdown, markdown_report(files, args))
     if args.json:
         document = {
+            "output_units": args.output_units,
             "files": [
                 {
                     "source": recording.source,
-                    "columns": {name: fit_as_json(fit) for name, fit in fits.items()},
+                    "columns": {name: fit_as_json(fit, output_units(args)) for name, fit in fits.items()},
                 }
                 for recording, fits in files
-            ]
+            ],
         }
         sys.stdout.write(strict_json(json_document("fit", document, FIT_NULL_REASONS)))
         return 0
     for recording, fits in files:
         print(f"{recording.source}: {len(recording)} samples at {recording.sample_rate:g} Hz")
         for name, fit in fits.items():
-            print(
-                f"  {name}: {fit.method}; χ² = {fit.chi_square:.3g} on {fit.degrees_of_freedom} "
-                "degrees of freedom"
-            )
-            for key, value in {**fit.paper_units(), **fit.field_units()}.items():
-                print(f"    {key:40s} {_format(*value)}")
-            if fit.at_bound:
-                print(f"    held at zero: {', '.join(fit.at_bound)}")
+            print("\n".join(fit_lines(name, fit, output_units(args))))
     for path in (args.plot, args.markdown):
         if path:
             print(f"wrote {path}")

@@ -6,9 +6,10 @@
 Values given to ``--set`` are read exactly: integers (``200``, ``1e6``), fractions (``1/2``) and
 decimals (``0.3`` is 3/10, not the nearest float). Without ``--exact`` the command prints the
 exact value (when the formula has a closed form) and the value to ``--digits`` significant digits
-(default 50, the package's working precision for checks). With ``--json`` it prints one object:
-``name``, ``parameters`` (strings), ``exact`` (SymPy string, or null), ``value`` (decimal string
-with ``digits`` significant digits), ``digits``, ``source``.
+(default 50, the package's working precision for checks). With ``--json`` it prints the document
+``carousel-theory/formula`` (docs/schemas/formula.schema.json): the version header, ``name``,
+``parameters`` (strings), ``exact`` (SymPy string, or null), ``value`` (decimal string with ``digits``
+significant digits), ``digits``, ``source``; ``--list --json`` prints ``carousel-theory/formula-list``.
 
 The 1/f entries have no closed form: their ``exact`` is null unless ``--exact`` is given (for
 ``flicker_average_var`` with rational d it is then computed in O(kN) exact rational arithmetic,
@@ -24,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
 import sys
 from collections.abc import Iterator
 from typing import Any
@@ -33,6 +33,7 @@ import mpmath
 import sympy as sp
 
 from carousel_theory.formulas import FORMULAS, PARAMETER_HELP, formula
+from carousel_theory.json_output import json_document, strict_json
 
 DEFAULT_DIGITS = 50
 
@@ -130,7 +131,7 @@ def _listing(as_json: bool) -> str:
             }
             for entry in FORMULAS.values()
         ]
-        return json.dumps(entries, indent=2, ensure_ascii=False)
+        return strict_json(json_document("formula-list", {"formulas": entries}), indent=2).rstrip("\n")
     width = max(len(name) for name in FORMULAS)
     lines = []
     for entry in FORMULAS.values():
@@ -193,7 +194,7 @@ def _print_result(
             "digits": digits,
             "source": entry.source,
         }
-        print(json.dumps(result, ensure_ascii=False))
+        sys.stdout.write(strict_json(json_document("formula", result), indent=None))
         return
     call = f"{entry.name}({', '.join(f'{key}={values[key]}' for key in entry.parameters)})"
     if exact is not None:

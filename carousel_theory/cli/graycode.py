@@ -4,9 +4,10 @@ for all orders n = 2 … N, without forming any 2^n × 2^n matrix."""
 from __future__ import annotations
 
 import argparse
-import json
+import sys
 
 from carousel_theory.graycode_properties import check_up_to
+from carousel_theory.json_output import json_document, strict_json
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -42,11 +43,12 @@ def run(args: argparse.Namespace) -> int:
                     "largest_n_verified": result.largest_verified,
                     "first_failure": result.first_failure,
                     "seconds": round(result.seconds, 3),
+                    "units": {"seconds": "s"},
                 }
                 for result in results
             ],
         }
-        print(json.dumps(payload, indent=2, ensure_ascii=False))
+        sys.stdout.write(strict_json(json_document("graycode", payload), indent=2))
     else:
         width = max(len(result.name) for result in results)
         print(f"{'property':<{width}}  largest n  seconds  statement")

@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import Any
 
+from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
 from carousel_theory.cli._recording_options import add_recording_options
 from carousel_theory.closed_loop import DEFAULT_ALPHA, run_loop, write_report
 from carousel_theory.closed_loop.report import REPORT_FILES
 from carousel_theory.data import load_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
+from carousel_theory.units import from_deg_per_hour_per_sqrt_hour, from_deg_per_sqrt_hour
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -50,7 +53,65 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="family-wise false-alarm rate of the whole run: every test of every iteration and the final "
         "Allan-variance misfit test (default 0.01)",
     )
+    add_output_units_option(parser)
     parser.set_defaults(handler=run)
+
+
+#: Units of the loop's JSON members by name (most names spell their unit; ``amplitude`` and ``height`` are
+#: rate amplitudes of the fitted effects). A member not listed is dimensionless (z, χ², p, counts).
+LOOP_UNITS = {
+    "bias_rad_s": "rad/s",
+    "white_variance_rad2_s2": "(rad/s)^2",
+    "long_run_white_variance_rad2_s2": "(rad/s)^2",
+    "rrw_variance_rad2_s2": "(rad/s)^2",
+    "flicker_variance_rad2_s2": "(rad/s)^2",
+    "long_run_white_variance": "(rad/s)^2",
+    "white_variance": "(rad/s)^2",
+    "rrw_variance": "(rad/s)^2",
+    "flicker_variance": "(rad/s)^2",
+    "angle_random_walk_deg_per_sqrt_h": "deg/sqrt(h)",
+    "rate_random_walk_deg_per_h_per_sqrt_h": "deg/h/sqrt(h)",
+    "amplitude": "rad/s",
+    "height": "rad/s",
+    "frequency_hz": "Hz",
+    "phase_rad": "rad",
+    "time_s": "s",
+    "time_constant_s": "s",
+    "coefficient_rad_s_per_degC": "rad/s/degC",
+    "temperature_range_degC": "degC",
+}
+
+
+def with_units(value: Any) -> Any:
+    """``value`` with a ``units`` map added to every object holding a member of :data:`LOOP_UNITS` (the
+    JSON convention of the README)."""
+    if isinstance(value, list):
+        return [with_units(item) for item in value]
+    if not isinstance(value, dict):
+        return value
+    result = {key: with_units(item) for key, item in value.items()}
+    named = {key: LOOP_UNITS[key] for key, item in value.items() if key in LOOP_UNITS and item is not None}
+    return {**result, "units": named} if named else result
+
+
+def loop_document(result: Any, output: OutputUnits) -> dict[str, Any]:
+    """``loop --json``: the loop's result with units named wherever a member has one (always SI: the
+    names spell their units); the headline errors are standardized, without unit."""
+    return {**with_units(result.as_dict()), "output_units": output.rate}
+
+
+def model_lines(result: Any, output: OutputUnits) -> list[str]:
+    """The final model per axis: bias in ``output``, ARW and RRW in °/√h and °/h/√h beside SI."""
+    lines = []
+    for axis, model in result.model_after.items():
+        arw = model["angle_random_walk_deg_per_sqrt_h"]
+        rrw = model["rate_random_walk_deg_per_h_per_sqrt_h"]
+        lines.append(
+            f"{axis}: bias {output.rates(model['bias_rad_s']):.4g} {output.rate_label}; "
+            f"ARW {arw:.4g} °/√h ({from_deg_per_sqrt_hour(arw):.4g} rad/√s); "
+            f"RRW {rrw:.4g} °/h/√h ({from_deg_per_hour_per_sqrt_hour(rrw):.4g} rad/s/√s)"
+        )
+    return lines
 
 
 def run(args: argparse.Namespace) -> int:
@@ -89,11 +150,13 @@ def run(args: argparse.Namespace) -> int:
         recording, samples_per_revolution=args.samples_per_revolution, axes=axes, alpha=args.alpha
     )
     print(f"{result.source}: effects {', '.join(result.effects)}")
-    print(f"{result.metric}: {result.error_before:.4g} before, {result.error_after:.4g} after")
+    print(f"{result.metric} (no unit): {result.error_before:.4g} before, {result.error_after:.4g} after")
+    print("\n".join(model_lines(result, output_units(args))))
     for note in result.observations:
         print(f"note: {note}")
     if args.json is not None:
-        write_text_atomic(args.json, strict_json(json_document("loop", result.as_dict())))
+        document = json_document("loop", loop_document(result, output_units(args)))
+        write_text_atomic(args.json, strict_json(document))
         print(f"wrote {args.json}")
     if args.report is not None:
         written = write_report(result, args.report)

@@ -7,15 +7,18 @@ prints."""
 from __future__ import annotations
 
 import argparse
-import json
+import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from carousel_theory._validation import check_fractional_order, check_positive_integer, check_positive_real
 from carousel_theory.cli._files import write_or_compare
+from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
 from carousel_theory.cli._recording_options import add_reader_options
 from carousel_theory.data import MAX_VALUES
+from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import atomic_output, plan_outputs, write_text_atomic
 
 
@@ -55,7 +58,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         default="calibration-mean",
         help="bias state of the Kalman filter: fixed at the calibration mean (the paper's) or diffuse (GLS)",
     )
-    parser.add_argument("--output", type=Path, help="write the forecast here (.csv or .json)")
+    parser.add_argument(
+        "--output", type=Path, help="write the forecast here (.csv or .json; rates in --output-units)"
+    )
+    add_output_units_option(parser)
     parser.add_argument("--table1", action="store_true", help="run the batch test of SJ 2012 Table I")
     parser.add_argument("--runs", type=int, default=1000, help="simulated runs for --table1 (default 1000)")
     parser.add_argument("--seed", type=int, default=2012, help="seed of the simulated runs (default 2012)")
@@ -84,6 +90,11 @@ def run(args: argparse.Namespace) -> int:
             )
         if args.time_unit is not None or args.max_values != MAX_VALUES:
             raise ValueError("--time-unit, --max-values: apply to DATA, not to --table1")
+        if args.output_units != "rad/s":
+            raise ValueError(
+                f"--output-units={args.output_units!r}: applies to a DATA forecast; Table I reports the "
+                "simulated data without unit (as SJ 2012) and recordings in rad/s"
+            )
         return _run_table1(args)
     if args.data is None:
         raise ValueError("DATA: a recording is required (or use --table1)")
@@ -138,23 +149,37 @@ def _run_recording(args: argparse.Namespace) -> int:
         bias_prior=args.prior,
         estimate_d=args.fit_d,
     )
-    rows = _forecast_columns(result, recording.time[args.start], 1.0 / recording.sample_rate)
-    _print_forecast(result, rows, f"{recording.source} [{axis}]")
+    output = output_units(args)
+    rows = _forecast_columns(result, recording.time[args.start], 1.0 / recording.sample_rate, output)
+    _print_forecast(result, rows, f"{recording.source} [{axis}]", output, 1.0 / recording.sample_rate)
     if args.output is not None:
-        _write_forecast(args.output, rows, result.model, axis, str(recording.source))
-        print(f"wrote {args.output}")
+        _write_forecast(args.output, rows, result.model, axis, str(recording.source), output)
+        print(f"wrote {args.output} (rates in {output.rate_label})")
     return 0
 
 
-def _forecast_columns(result, start_time: float, sample_interval: float) -> dict[str, np.ndarray]:
+#: Columns of the forecast that are rates (the others: index, a count, and time_s in s).
+_RATE_COLUMNS = (
+    "kf_prediction",
+    "kf_sigma",
+    "kf_lower_2sigma",
+    "kf_upper_2sigma",
+    "ma_prediction",
+    "cm_prediction",
+    "measured",
+)
+
+
+def _forecast_columns(
+    result, start_time: float, sample_interval: float, output: OutputUnits
+) -> dict[str, np.ndarray]:
+    """The forecast table, rates converted to ``output``."""
     horizon = result.measured.shape[0]
     indices = np.arange(
         result.start + result.calibration_length, result.start + result.calibration_length + horizon
     )
     low, high = result.kalman.interval(2.0)
-    return {
-        "index": indices,
-        "time_s": start_time + (indices - result.start) * sample_interval,
+    rates = {
         "kf_prediction": result.kalman.mean,
         "kf_sigma": np.sqrt(result.kalman.observation_variance),
         "kf_lower_2sigma": low,
@@ -163,29 +188,55 @@ def _forecast_columns(result, start_time: float, sample_interval: float) -> dict
         "cm_prediction": np.full(horizon, result.calibration_mean),
         "measured": result.measured,
     }
+    return {
+        "index": indices,
+        "time_s": start_time + (indices - result.start) * sample_interval,
+        **{key: np.asarray(output.rates(values)) for key, values in rates.items()},
+    }
 
 
-def _print_forecast(result, rows: dict[str, np.ndarray], name: str) -> None:
+def _print_forecast(
+    result, rows: dict[str, np.ndarray], name: str, output: OutputUnits, sample_interval: float
+) -> None:
+    """The model, the forecast and (when the horizon was recorded) IE and RSSE, every figure with its unit:
+    IE = Σ e_t over the horizon (rate × samples; × Δt it is the accumulated angle), RSSE = √Σ e_t²."""
     model = result.model
     note = "REML estimate from the calibration segment" if result.variances_estimated else "given"
     if result.variances_estimated and result.estimated_d:
         note = "d, σ_w², σ_v² by REML from the calibration segment"
     last = result.start + result.calibration_length - 1
+    variance = output.variance_label
     print(
-        f"{name}: calibration {result.start}..{last}, horizon {result.measured.shape[0]}; "
-        f"d = {model.d}, σ_w² = {model.driving_variance:.4g}, σ_v² = {model.white_variance:.4g} ({note}); "
+        f"{name}: calibration {result.start}..{last}, horizon {result.measured.shape[0]}; d = {model.d}, "
+        f"σ_w² = {output.variances(model.driving_variance):.4g} {variance}, "
+        f"σ_v² = {output.variances(model.white_variance):.4g} {variance} ({note}); "
         f"bias prior {model.bias_prior}"
     )
+    rate = output.rate_label
     print(
-        f"KF forecast {result.kalman.mean[0]:.6g} → {result.kalman.mean[-1]:.6g} "
-        f"(±2σ at the end {2 * rows['kf_sigma'][-1]:.3g}); "
-        f"calibration mean {result.calibration_mean:.6g}"
+        f"KF forecast {rows['kf_prediction'][0]:.6g} → {rows['kf_prediction'][-1]:.6g} {rate} "
+        f"(±2σ at the end {2 * rows['kf_sigma'][-1]:.3g} {rate}); "
+        f"calibration mean {output.rates(result.calibration_mean):.6g} {rate}"
     )
     errors = result.errors()
     if errors is not None:
+        angle_unit = "rad" if output.rate == "rad/s" else "°"
         for method, (integrated, root_sum) in errors.items():
-            print(f"  {method}: IE {integrated:.6g}, RSSE {root_sum:.6g}")
+            angle = _angle(integrated, sample_interval, angle_unit)
+            print(
+                f"  {method}: IE {output.rates(integrated):.6g} {rate}·sample ({angle:.6g} {angle_unit} of "
+                f"angle), RSSE {output.rates(root_sum):.6g} {rate}"
+            )
 
+
+def _angle(integrated_rad_per_s: float, sample_interval: float, unit: str) -> float:
+    """The accumulated angle IE·Δt (rad) in ``unit`` ("rad" or "°")."""
+    angle = integrated_rad_per_s * sample_interval
+    return angle if unit == "rad" else angle * 180.0 / np.pi
+
+
+#: Why ``measured`` holds nulls in the forecast JSON.
+_NOT_RECORDED = "null where the horizon runs past the end of the recording: not measured"
 
 #: Rows of forecast CSV formatted at a time.
 _CSV_CHUNK = 65_536
@@ -205,21 +256,29 @@ def _column_text(key: str, values: np.ndarray) -> list[str]:
     return ["" if value is None else as_text(value) for value in _column_values(values)]
 
 
-def _write_forecast(path: Path, rows: dict, model, axis: str, source: str) -> None:
+def _write_forecast(path: Path, rows: dict, model, axis: str, source: str, output: OutputUnits) -> None:
     suffix = path.suffix.lower()
     if suffix == ".json":
-        payload = {
+        payload: dict[str, Any] = {
             "source": source,
             "axis": axis,
+            "output_units": output.rate,
             "model": {
                 "d": model.d,
                 "driving_variance": model.driving_variance,
                 "white_variance": model.white_variance,
                 "bias_prior": model.bias_prior,
+                "units": {"driving_variance": "(rad/s)^2", "white_variance": "(rad/s)^2"},
             },
-            "columns": {key: _column_values(values) for key, values in rows.items()},
+            "columns": {
+                **{key: _column_values(values) for key, values in rows.items()},
+                "index": np.asarray(rows["index"], dtype=np.int64).tolist(),
+                "units": {"time_s": "s", **dict.fromkeys(_RATE_COLUMNS, output.rate)},
+            },
         }
-        write_text_atomic(path, json.dumps(payload, indent=1) + "\n")
+        if not np.isfinite(rows["measured"]).all():
+            payload["columns"]["measured_null_reason"] = _NOT_RECORDED
+        write_text_atomic(path, strict_json(json_document("predict", payload)))
     elif suffix == ".csv":
         length = len(next(iter(rows.values())))
         with atomic_output(path) as temporary, temporary.open("w", encoding="utf-8", newline="") as handle:
@@ -277,7 +336,7 @@ def _run_table1(args: argparse.Namespace) -> int:
     table = _table1(args)
     result = table.as_dict()
     if args.json:
-        print(json.dumps(result, indent=1, sort_keys=True))
+        sys.stdout.write(strict_json(json_document("predict-table1", _with_units(result))))
     else:
         _print_table(result)
     if args.markdown is not None:
@@ -287,15 +346,50 @@ def _run_table1(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Units of the measured Table I's own figures (the paper's columns are as SJ 2012 printed them).
+_TABLE1_UNITS = {
+    "mean_ie": "rad/s*sample",
+    "std_ie": "rad/s*sample",
+    "mean_rsse": "rad/s",
+    "std_rsse": "rad/s",
+}
+
+
+def _with_units(result: dict) -> dict:
+    """Table I with ``units`` maps on the measured recordings' figures; the simulated data have none (as in
+    SJ 2012: "no units assumed for the simulated data")."""
+    if result["settings"]["kind"] == "simulated":
+        return result
+    axes = {}
+    for name, entry in result["axes"].items():
+        methods = {
+            method: {
+                **entry[method],
+                "units": {key: _TABLE1_UNITS[key] for key in entry[method] if key in _TABLE1_UNITS},
+            }
+            for method in ("KF", "MA", "CM")
+        }
+        units = {"driving_variance": "(rad/s)^2", "white_variance": "(rad/s)^2"}
+        axes[name] = {**entry, **methods, "units": units}
+    return {**result, "axes": axes}
+
+
 def _print_table(result: dict) -> None:
     from carousel_theory.bias_prediction_study import ROW_NAMES
 
-    blocks = [("", result)] if result["settings"]["kind"] == "simulated" else list(result["axes"].items())
+    simulated = result["settings"]["kind"] == "simulated"
+    blocks = [("", result)] if simulated else list(result["axes"].items())
+    print(
+        "IE and RSSE of simulated data have no unit (as in SJ 2012)"
+        if simulated
+        else "ours: IE in rad/s·sample (× Δt: the angle in rad), RSSE in rad/s; "
+        "paper: as SJ 2012 Table I prints them"
+    )
     for name, entry in blocks:
         if name:
             print(
-                f"[{name}] {entry['sections']} sections, σ_w² = {entry['driving_variance']:.4g}, "
-                f"σ_v² = {entry['white_variance']:.4g}"
+                f"[{name}] {entry['sections']} sections, σ_w² = {entry['driving_variance']:.4g} (rad/s)², "
+                f"σ_v² = {entry['white_variance']:.4g} (rad/s)²"
             )
         print(f"{'':10s} " + " ".join(f"{m + ' ours':>11s} {m + ' paper':>11s}" for m in ("KF", "MA", "CM")))
         for row, row_name in ROW_NAMES.items():
