@@ -43,6 +43,7 @@ __all__ = [
     "MAX_LINE_BYTES",
     "MAX_VALUES",
     "RESERVED_COLUMN_NAMES",
+    "TIME_COLUMN_NAMES",
     "TIME_UNITS",
     "Recording",
     "load_recording",
@@ -61,6 +62,8 @@ GAP_FACTOR = 1.5
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
 
 _TIME_NAMES = ("t", "time", "time_s", "timestamp")
+#: Column names (compared in lower case) read as the time column when no mapping says otherwise.
+TIME_COLUMN_NAMES = _TIME_NAMES
 _TEMPERATURE_NAMES = ("temp", "temperature")
 _ANGLE_NAMES = ("phi", "angle")
 _RATE_PREFIXES = ("w", "gyro", "omega")
@@ -253,9 +256,8 @@ def recording_from_arrays(
     Parameters
     ----------
     rates : mapping of name to 1-D array, a pandas DataFrame, or a 2-D array
-        The gyro columns, in ``units``. A DataFrame contributes every column (use ``time=`` etc. for the
-        others, or pass ``df[["wx", "wy"]]``). A 2-D array holds one axis per column, named wx, wy, wz
-        (w0, w1, … beyond three).
+        The gyro columns, in ``units``: every column of a DataFrame (pass ``df[["wx", "wy"]]``); one axis
+        per column of a 2-D array, named wx, wy, wz (w0, w1, … beyond three).
     time : 1-D array, optional
         Sample times in ``time_unit`` (numbers) or ``datetime64``/``timedelta64`` values. The
         recording's ``time`` counts from the first of them (kept as ``time_origin``). Without it,
@@ -272,9 +274,7 @@ def recording_from_arrays(
         Unit of a numeric time column (default s), e.g. "ms" for epoch milliseconds. Not allowed with a
         ``datetime64``/``timedelta64`` column, which carries its own unit.
     resample : float or "auto", optional
-        Average the samples onto a uniform grid of this many Hz (bin means, see
-        :mod:`carousel_theory.resampling`; "auto": the highest f̄/2^k that bridges its empty bins),
-        which needs ``time``. Repeated timestamps are then allowed; gaps are refused.
+        Bin means on a uniform grid of this many Hz (:mod:`carousel_theory.resampling`); needs ``time``.
     """
     _check_reading_options(irregular, time_unit, source)
     rates = _rate_mapping(rates, source)
@@ -287,21 +287,21 @@ def recording_from_arrays(
             converted, time, temperature, angle, resample, source, time_unit, sample_rate
         )
     axis = _time_axis(time, sample_rate, length, source, irregular, time_unit)
-    temperature_array = (
-        None if temperature is None else _check_column("temperature", temperature, source, length)
-    )
-    angle_array = None if angle is None else _check_column("angle", angle, source, length)
     return Recording(
         time=axis.time,
         rates=converted,
         sample_rate=float(axis.sample_rate),
-        temperature=temperature_array,
-        angle=angle_array,
+        temperature=_optional_column("temperature", temperature, source, length),
+        angle=_optional_column("angle", angle, source, length),
         source=source,
         uniform=axis.uniform,
         notes=axis.notes,
         time_origin=axis.origin,
     )
+
+
+def _optional_column(name: str, values: Any, source: str, length: int) -> np.ndarray | None:
+    return None if values is None else _check_column(name, values, source, length)
 
 
 def _rate_mapping(rates: Any, source: str) -> Mapping[str, Any]:
@@ -566,6 +566,16 @@ def _column_roles(
     return time_name, columns.get("temperature"), columns.get("angle"), rate_names
 
 
+def _file_sample_rate(table: Mapping[str, Any], path: Path) -> float | None:
+    """The file's own ``fs`` entry (one positive number), if it has one."""
+    if "fs" not in table or np.size(table["fs"]) != 1:
+        return None
+    sample_rate = float(np.asarray(table["fs"]).reshape(()))
+    if not (math.isfinite(sample_rate) and sample_rate > 0):
+        raise ValueError(f"{path}: the 'fs' entry {sample_rate!r} is not a positive sample rate")
+    return sample_rate
+
+
 def load_recording(
     path: str | Path,
     *,
@@ -583,10 +593,8 @@ def load_recording(
     Parameters
     ----------
     path : str or Path
-        A text file with a header row (``.csv``, ``.txt``, ``.tsv``: comma, semicolon, tab or
-        whitespace separated), an ``.npz``, an HDF5 file (``.h5``, ``.hdf5``, ``.hdf``; needs h5py, the
-        ``hdf5`` extra) or a MATLAB ``.mat`` file (v7.3 needs h5py). See :mod:`carousel_theory.readers`
-        for how each names its columns (``NAME[:,j]`` for the columns of a matrix).
+        Text with a header row (``.csv``/``.txt``/``.tsv``), ``.npz``, HDF5 (``.h5``/``.hdf5``/``.hdf``,
+        the ``hdf5`` extra) or MATLAB ``.mat``; :mod:`carousel_theory.readers` names their columns.
     columns : mapping, optional
         Our name → the file's name. Keys ``"time"``, ``"temperature"`` and ``"angle"`` are special; every
         other key names a gyro column. Without it: the time is the column ``t``/``time``, temperature
@@ -600,13 +608,13 @@ def load_recording(
         What to do with gaps or non-uniform timestamps.
     time_unit : {"s", "ms", "us", "ns"}, optional
         Unit of a numeric time column (default s); see :func:`recording_from_arrays`.
+    resample : float or "auto", optional
+        Bin means on a uniform grid of this many Hz; see :func:`recording_from_arrays`.
     max_values : int
         Most values (all columns together) read into memory; an NPZ is refused from its headers, a CSV
         as soon as its rows exceed it (default ``MAX_VALUES``, 10⁹ values, 8 GB as float64).
     delimiter : {"auto", "comma", "semicolon", "tab", "whitespace"}
         The separator of a text file ("auto": read from the header row).
-    resample : float or "auto", optional
-        Average onto a uniform grid of this many Hz; see :func:`recording_from_arrays`.
     """
     if not isinstance(path, (str, Path)):
         raise TypeError(f"path={path!r}: must be a str or pathlib.Path")
@@ -614,10 +622,8 @@ def load_recording(
     table = read_table(Path(path), check_positive_integer("max_values", max_values), delimiter)
     path = Path(path)
     time_name, temperature_name, angle_name, rate_names = _column_roles(table, columns, path)
-    if sample_rate is None and resample is None and "fs" in table and np.size(table["fs"]) == 1:
-        sample_rate = float(np.asarray(table["fs"]).reshape(()))
-        if not (math.isfinite(sample_rate) and sample_rate > 0):
-            raise ValueError(f"{path}: the 'fs' entry {sample_rate!r} is not a positive sample rate")
+    if sample_rate is None and resample is None:
+        sample_rate = _file_sample_rate(table, path)
     return recording_from_arrays(
         {ours: table[theirs] for ours, theirs in rate_names.items()},
         time=None if time_name is None else table[time_name],
