@@ -342,8 +342,7 @@ class FitOptions:
         check_positive_integer("ar_order", self.ar_order)
         check_positive_integer("minimum_clusters", self.minimum_clusters, minimum=2)
         check_positive_integer("iterations", self.iterations)
-        if self.tau_range is not None:  # an open end (None) becomes 0 or ∞
-            object.__setattr__(self, "tau_range", check_tau_range(self.tau_range))
+        check_tau_range(self.tau_range)  # an open end (None) is 0 or ∞
 
 
 # --- AR coefficients ---------------------------------------------------------------------------------
