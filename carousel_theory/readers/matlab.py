@@ -14,6 +14,7 @@ import zlib
 from pathlib import Path
 
 import numpy as np
+from scipy.io.matlab import MatReadError
 
 from carousel_theory.readers._common import check_values, is_matrix_shape, matrix_columns
 from carousel_theory.readers.hdf5 import read_hdf5
@@ -25,6 +26,7 @@ _NUMERIC_CLASSES = frozenset(
 )
 #: What a damaged MAT file makes scipy.io raise.
 _READ_ERRORS = (
+    MatReadError,
     ValueError,
     OSError,
     TypeError,
