@@ -335,6 +335,7 @@ def _check_resample(resample: Any, sample_rate: float | None) -> float | None:
 
 def _averaged_recording(
     offsets: np.ndarray,
+    resolution: float,
     rates: Mapping[str, np.ndarray],
     extras: dict[str, np.ndarray | None],
     rate: float | None,
@@ -343,14 +344,14 @@ def _averaged_recording(
     notes: tuple[str, ...],
 ) -> Recording:
     """A uniform recording of the bin means of ``rates`` (rad/s) and of the temperature and angle."""
-    columns = {("rate", name): values for name, values in rates.items()}
-    columns.update({("extra", name): values for name, values in extras.items() if values is not None})
-    averaged = block_average(offsets, columns, rate, source)  # type: ignore[arg-type]
+    columns = {f"rate:{name}": values for name, values in rates.items()}
+    columns.update({f"extra:{name}": values for name, values in extras.items() if values is not None})
+    averaged = block_average(offsets, columns, rate, source, resolution)
     recording = recording_from_arrays(
-        {name: averaged.columns[("rate", name)] for name in rates},  # type: ignore[index]
+        {name: averaged.columns[f"rate:{name}"] for name in rates},
         sample_rate=averaged.sample_rate,
-        temperature=averaged.columns.get(("extra", "temperature")),  # type: ignore[call-overload]
-        angle=averaged.columns.get(("extra", "angle")),  # type: ignore[call-overload]
+        temperature=averaged.columns.get("extra:temperature"),
+        angle=averaged.columns.get("extra:angle"),
         source=source,
     )
     return replace(recording, time_origin=origin, notes=(*notes, averaged.note))
@@ -367,14 +368,14 @@ def _resampled_from_arrays(
     sample_rate: float | None,
 ) -> Recording:
     """:func:`recording_from_arrays` with ``resample=``: bin means on a uniform grid."""
-    rate = _check_resample(resample, sample_rate)
     if time is None:
         raise ValueError(
             f"resample={resample!r}: {source} has no time column to resample from (without one, its "
             "samples are taken as uniform at sample_rate)"
         )
+    rate = _check_resample(resample, sample_rate)
     length = len(next(iter(rates.values())))
-    offsets, origin, _ = _time_offsets(time, time_unit, source, length)
+    offsets, origin, resolution = _time_offsets(time, time_unit, source, length)
     extras = {
         "temperature": None
         if temperature is None
@@ -382,7 +383,7 @@ def _resampled_from_arrays(
         # An angle is unwrapped first: the mean of 359° and 1° is 360°, not 180°.
         "angle": None if angle is None else np.unwrap(_check_column("angle", angle, source, length)),
     }
-    return _averaged_recording(offsets, rates, extras, rate, source, origin, ())
+    return _averaged_recording(offsets, resolution, rates, extras, rate, source, origin, ())
 
 
 def resample_recording(recording: Recording, sample_rate: float | str = "auto") -> Recording:
@@ -401,8 +402,10 @@ def resample_recording(recording: Recording, sample_rate: float | str = "auto") 
     }
     offsets = recording.time - recording.time[0]
     origin = recording.time_origin + float(recording.time[0])
+    # The float timestamps the recording was read from were known to two spacings at their largest.
+    resolution = 2.0 * float(np.spacing(abs(recording.time_origin) + float(recording.time[-1])))
     return _averaged_recording(
-        offsets, recording.rates, extras, rate, recording.source, origin, recording.notes
+        offsets, resolution, recording.rates, extras, rate, recording.source, origin, recording.notes
     )
 
 

@@ -2,8 +2,9 @@
 
 Method
     The grid starts at the first timestamp and steps by T = 1/f. A sample taken t seconds after the
-    first falls in bin ⌊t f + ε⌋ (ε = 10⁻⁶ of a bin absorbs the rounding of timestamps that sit on a
-    bin edge) and each bin's value is the mean of its samples.
+    first falls in bin ⌊(t + r) f + ε⌋, r the resolution of the timestamps (two float spacings of
+    epoch seconds, one tick of integer ones) and ε = 10⁻⁶, so that a timestamp that sits on a bin
+    edge but was rounded down falls in the bin it starts; each bin's value is the mean of its samples.
 
 Why bin means and not interpolation
     The Allan variance (TIM 2014 eq. (20)) is the variance of differences of averages over τ. A bin
@@ -71,8 +72,8 @@ class BlockAverage:
     note: str
 
 
-def _bin_indices(offsets: np.ndarray, sample_rate: float) -> np.ndarray:
-    return np.floor(offsets * sample_rate + _EDGE_TOLERANCE).astype(np.int64)
+def _bin_indices(offsets: np.ndarray, sample_rate: float, resolution: float) -> np.ndarray:
+    return np.floor((offsets + resolution) * sample_rate + _EDGE_TOLERANCE).astype(np.int64)
 
 
 def _longest_empty_run(filled: np.ndarray) -> tuple[int, int]:
@@ -96,7 +97,8 @@ def _check_offsets(offsets: np.ndarray, source: str) -> float:
     if backwards.size:
         i = int(backwards[0])
         raise ValueError(
-            f"{source}: timestamps go backwards: t[{i}]={offsets[i]!r} then t[{i + 1}]={offsets[i + 1]!r} s "
+            f"{source}: timestamps go backwards: t[{i}]={float(offsets[i])!r} then "
+            f"t[{i + 1}]={float(offsets[i + 1])!r} s "
             f"after the first ({backwards.size} such steps); resampling needs them in order"
         )
     span = float(offsets[-1] - offsets[0])
@@ -105,25 +107,26 @@ def _check_offsets(offsets: np.ndarray, source: str) -> float:
     return (len(offsets) - 1) / span
 
 
-def default_resample_rate(offsets: np.ndarray) -> float | None:
+def default_resample_rate(offsets: np.ndarray, resolution: float = 0.0) -> float | None:
     """The highest of f̄/2^k (f̄ the mean rate, k < 12) at which the grid's empty bins are few and short
     enough to bridge (see the module text); None when there is none."""
     mean_rate = (len(offsets) - 1) / float(offsets[-1] - offsets[0])
     for halvings in range(_HALVINGS):
         rate = mean_rate / 2.0**halvings
-        filled = np.bincount(_bin_indices(offsets, rate)) > 0
+        filled = np.bincount(_bin_indices(offsets, rate, resolution)) > 0
         if _honest(filled):
             return rate
     return None
 
 
-def _refuse_dishonest(filled: np.ndarray, rate: float, mean_rate: float, source: str) -> None:
+def _refuse_dishonest(filled: np.ndarray, rate: float, offsets: np.ndarray, source: str) -> None:
     empty = int((~filled).sum())
     run, first = _longest_empty_run(filled)
     if run > MAX_EMPTY_RUN:
+        after = int(np.searchsorted(offsets, (first + run) / rate - 0.5 / rate))  # first sample after it
         raise ValueError(
-            f"{source}: resampling at {rate:.6g} Hz: no sample between t={first / rate:.6g} s and "
-            f"t={(first + run) / rate:.6g} s after the first ({run} empty bins in a row, more than "
+            f"{source}: resampling at {rate:.6g} Hz: no sample between t={offsets[after - 1]:.6g} s and "
+            f"t={offsets[after]:.6g} s after the first ({run} empty bins in a row, more than "
             f"{MAX_EMPTY_RUN}): a gap that interpolation cannot honestly bridge; analyse the parts before "
             "and after it separately, or resample at a lower rate if the gap is only a burst"
         )
@@ -131,7 +134,7 @@ def _refuse_dishonest(filled: np.ndarray, rate: float, mean_rate: float, source:
         raise ValueError(
             f"{source}: resampling at {rate:.6g} Hz leaves {empty} of {len(filled)} bins empty "
             f"({empty / len(filled):.1%}, more than {MAX_EMPTY_FRACTION:.0%}); the recording's mean rate is "
-            f"{mean_rate:.6g} Hz: resample at a lower rate"
+            f"{(len(offsets) - 1) / float(offsets[-1]):.6g} Hz: resample at a lower rate"
         )
 
 
@@ -140,23 +143,25 @@ def block_average(
     columns: Mapping[str, np.ndarray],
     sample_rate: float | None = None,
     source: str = "arrays",
+    resolution: float = 0.0,
 ) -> BlockAverage:
     """Bin means of ``columns`` on a uniform grid of ``sample_rate`` Hz (see the module text).
 
-    ``offsets`` are the sample times in s after the first (non-decreasing). Without ``sample_rate``,
-    :func:`default_resample_rate` chooses it. Raises ValueError for a gap or too many empty bins.
+    ``offsets`` are the sample times in s after the first (non-decreasing), ``resolution`` the
+    precision of the timestamps in s. Without ``sample_rate``, :func:`default_resample_rate` chooses
+    it. Raises ValueError for a gap or too many empty bins.
     """
     offsets = np.asarray(offsets, dtype=np.float64)
     mean_rate = _check_offsets(offsets, source)
     if sample_rate is None:
-        sample_rate = default_resample_rate(offsets)
+        sample_rate = default_resample_rate(offsets, resolution)
         if sample_rate is None:
             sample_rate = mean_rate / 2.0 ** (_HALVINGS - 1)  # refused below, naming the gap
     rate = float(check_positive_real("sample_rate", sample_rate))
-    index = _bin_indices(offsets, rate)
+    index = _bin_indices(offsets, rate, resolution)
     count = np.bincount(index).astype(np.float64)
     filled = count > 0
-    _refuse_dishonest(filled, rate, mean_rate, source)
+    _refuse_dishonest(filled, rate, offsets, source)
     positions = np.arange(len(count), dtype=np.float64)
 
     def average(values: np.ndarray) -> np.ndarray:
