@@ -285,3 +285,20 @@ def test_delimiter_applies_to_text_only(tmp_path, columns):
         load_recording(path, delimiter="tab")
     with pytest.raises(ValueError, match=r"delimiter='\|': must be 'auto' or one of"):
         load_recording(path, delimiter="|")
+
+
+def test_whitespace_file_padded_after_the_first_block_is_still_read(tmp_path):
+    # The first 64 KiB hold single spaces (the fast parser is tried); a padded row comes later.
+    rows = 6000
+    rng = np.random.default_rng(13)
+    values = rng.standard_normal(rows)
+    lines = ["t wx"] + [f"{i / RATE!r} {values[i]!r}" for i in range(rows)]
+    lines[rows - 10] = lines[rows - 10].replace(" ", "    ")
+    path = tmp_path / "padded.txt"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    assert path.stat().st_size > 1 << 16
+    np.testing.assert_array_equal(load_recording(path).rates["wx"], values)
+    lines[rows - 5] = f"{(rows - 6) / RATE!r} oops"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    with pytest.raises(ValueError, match=rf"row {rows - 6} .*column 'wx': 'oops' is not a number"):
+        load_recording(path)

