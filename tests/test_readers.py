@@ -292,7 +292,7 @@ def test_whitespace_file_padded_after_the_first_block_is_still_read(tmp_path):
     rows = 6000
     rng = np.random.default_rng(13)
     values = rng.standard_normal(rows)
-    lines = ["t wx"] + [f"{i / RATE!r} {values[i]!r}" for i in range(rows)]
+    lines = ["t wx"] + [f"{i / RATE!r} {float(values[i])!r}" for i in range(rows)]
     lines[rows - 10] = lines[rows - 10].replace(" ", "    ")
     path = tmp_path / "padded.txt"
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
