@@ -173,28 +173,6 @@ def _hdf5(path: Path, **datasets: np.ndarray) -> Path:
     return path
 
 
-def test_hdf5_hostile_files(tmp_path, columns):
-    good = _hdf5(tmp_path / "good.h5", **columns)
-    truncated = tmp_path / "truncated.h5"
-    truncated.write_bytes(good.read_bytes()[: good.stat().st_size // 2])
-    with pytest.raises(ValueError, match=r"truncated\.h5: not a readable HDF5 file"):
-        load_recording(truncated)
-    text = tmp_path / "text.h5"
-    text.write_text("t,wx\n0,1\n", encoding="utf-8")
-    with pytest.raises(ValueError, match=r"not an HDF5 file \(no HDF5 signature"):
-        load_recording(text)
-    with pytest.raises(ValueError, match=r"columns \['gyro_y'\] not found"):
-        load_recording(good, columns={"wx": "wx", "wy": "gyro_y"})
-    nan = columns["wx"].copy()
-    nan[7] = math.nan
-    with pytest.raises(ValueError, match=r"column 'wx' holds nan at row 7"):
-        load_recording(_hdf5(tmp_path / "nan.h5", t=columns["t"], wx=nan))
-    uneven = columns["t"].copy()
-    uneven[20] += 0.3 / RATE
-    with pytest.raises(ValueError, match=r"non-uniform timestamps.*t\[20\]|t\[21\]"):
-        load_recording(_hdf5(tmp_path / "uneven.h5", t=uneven, wx=columns["wx"]))
-
-
 def test_hdf5_values_are_counted_before_they_are_read(tmp_path):
     path = tmp_path / "big.h5"
     with h5py.File(path, "w") as handle:
@@ -254,28 +232,94 @@ def test_matlab_v73_is_read_as_matlab_shows_it(tmp_path, columns):
     assert _digest(path) == before
 
 
-def test_matlab_hostile_files(tmp_path, columns):
-    good = tmp_path / "good.mat"
-    scipy.io.savemat(good, {name: values.reshape(-1, 1) for name, values in columns.items()})
-    truncated = tmp_path / "truncated.mat"
-    truncated.write_bytes(good.read_bytes()[: good.stat().st_size - 100])
-    with pytest.raises(ValueError, match=r"truncated\.mat: not a readable MATLAB \.mat file"):
-        load_recording(truncated)
-    text = tmp_path / "text.mat"
-    text.write_text("t,wx\n0,1\n0.1,2\n", encoding="utf-8")
-    with pytest.raises(ValueError, match=r"text\.mat: not a"):
-        load_recording(text)
-    nan = columns["wy"].copy()
-    nan[3] = math.nan
-    scipy.io.savemat(tmp_path / "nan.mat", {"t": columns["t"], "wy": nan})
-    with pytest.raises(ValueError, match=r"column 'wy' holds nan at row 3"):
-        load_recording(tmp_path / "nan.mat")
-    strings = tmp_path / "strings.mat"
-    scipy.io.savemat(strings, {"note": "nothing numeric"})
-    with pytest.raises(ValueError, match="no numeric vector or matrix"):
-        load_recording(strings)
-    with pytest.raises(ValueError, match=r"its variables declare 120 values .* max_values=100"):
-        load_recording(good, max_values=100)
+# --- hostile HDF5 and MATLAB files: one table ----------------------------------------------------
+
+
+def _mat(path: Path, **variables: np.ndarray) -> Path:
+    scipy.io.savemat(path, {name: np.asarray(values).reshape(-1, 1) for name, values in variables.items()})
+    return path
+
+
+def _truncated(writer, suffix: str, keep: float):
+    def build(path: Path, columns: dict[str, np.ndarray]) -> Path:
+        good = writer(path.with_name(f"good{suffix}"), **columns)
+        path.write_bytes(good.read_bytes()[: int(good.stat().st_size * keep)])
+        return path
+
+    return build
+
+
+def _with_nan(writer, name: str, row: int):
+    def build(path: Path, columns: dict[str, np.ndarray]) -> Path:
+        values = dict(columns)
+        values[name] = values[name].copy()
+        values[name][row] = math.nan
+        return writer(path, **values)
+
+    return build
+
+
+def _uneven(writer, row: int):
+    def build(path: Path, columns: dict[str, np.ndarray]) -> Path:
+        time = columns["t"].copy()
+        time[row:] += 0.3 / RATE  # one step 30 % too long
+        return writer(path, **{**columns, "t": time})
+
+    return build
+
+
+def _text_named(suffix: str):
+    def build(path: Path, columns: dict[str, np.ndarray]) -> Path:
+        path.write_text("t,wx\n0,1\n0.1,2\n", encoding="utf-8")
+        return path
+
+    return build
+
+
+def _only_text(path: Path, columns: dict[str, np.ndarray]) -> Path:
+    scipy.io.savemat(path, {"note": "nothing numeric"})
+    return path
+
+
+HOSTILE = [
+    ("hdf5-truncated", ".h5", _truncated(_hdf5, ".h5", 0.5), {}, r"r\.h5: not a readable HDF5 file"),
+    ("hdf5-text", ".h5", _text_named(".h5"), {}, r"not an HDF5 file \(no HDF5 signature"),
+    (
+        "hdf5-wrong-column",
+        ".h5",
+        lambda p, c: _hdf5(p, **c),
+        {"columns": {"wy": "gyro_y"}},
+        r"\['gyro_y'\] not found",
+    ),
+    ("hdf5-nan", ".h5", _with_nan(_hdf5, "wx", 7), {}, r"column 'wx' holds nan at row 7"),
+    ("hdf5-non-uniform", ".h5", _uneven(_hdf5, 20), {}, r"non-uniform timestamps: .* t\[20\]-t\[19\]=0\.026 s"),
+    ("mat-truncated", ".mat", _truncated(_mat, ".mat", 0.8), {}, r"r\.mat: not a readable MATLAB \.mat file"),
+    ("mat-text", ".mat", _text_named(".mat"), {}, r"r\.mat: not a"),
+    ("mat-wrong-column", ".mat", lambda p, c: _mat(p, **c), {"columns": {"wx": "gx"}}, r"\['gx'\] not found"),
+    ("mat-nan", ".mat", _with_nan(_mat, "wy", 3), {}, r"column 'wy' holds nan at row 3"),
+    ("mat-non-uniform", ".mat", _uneven(_mat, 20), {}, r"non-uniform timestamps: .* t\[20\]-t\[19\]=0\.026 s"),
+    ("mat-no-numbers", ".mat", _only_text, {}, "no numeric vector or matrix"),
+    (
+        "mat-too-many",
+        ".mat",
+        lambda p, c: _mat(p, **c),
+        {"max_values": 100},
+        r"declare 120 values .* max_values=100",
+    ),
+]
+
+
+@pytest.mark.parametrize(
+    ("suffix", "build", "options", "message"),
+    [case[1:] for case in HOSTILE],
+    ids=[case[0] for case in HOSTILE],
+)
+def test_hostile_files_are_refused_with_where(tmp_path, columns, suffix, build, options, message):
+    path = build(tmp_path / f"r{suffix}", columns)
+    before = _digest(path)
+    with pytest.raises(ValueError, match=message):
+        load_recording(path, **options)
+    assert _digest(path) == before
 
 
 def test_delimiter_applies_to_text_only(tmp_path, columns):
