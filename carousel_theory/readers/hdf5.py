@@ -108,8 +108,11 @@ def read_hdf5(path: Path, max_values: int, *, matlab: bool = False) -> dict[str,
             columns: dict[str, np.ndarray] = {}
             for name, dataset in zip(_column_names(datasets), datasets, strict=True):
                 columns.update(_dataset_columns(name, dataset, matlab))
-    except (OSError, KeyError, RuntimeError) as error:
-        raise ValueError(f"{path}: not a readable HDF5 file ({str(error).splitlines()[0]})") from None
+    except (OSError, KeyError, RuntimeError, ValueError, TypeError) as error:
+        message = str(error).splitlines()[0] if str(error) else type(error).__name__
+        if message.startswith(str(path)):
+            raise
+        raise ValueError(f"{path}: not a readable HDF5 file ({message})") from None
     if not columns:
         raise ValueError(f"{path}: no numeric datasets (columns) in the file")
     return columns
