@@ -170,3 +170,13 @@ def test_resample_needs_a_time_column_and_no_sample_rate():
         recording_from_arrays({"wx": np.zeros(10)}, time=np.arange(10.0), sample_rate=1.0, resample=2.0)
     with pytest.raises(ValueError, match=r"resample='fast': must be a rate in Hz or 'auto'"):
         recording_from_arrays({"wx": np.zeros(10)}, time=np.arange(10.0), resample="fast")
+
+
+def test_batch_task_reads_with_the_resample_option(bursty_npz):
+    pytest.importorskip("pyarrow", reason="batch rows need pyarrow (the 'batch' extra)")
+    from carousel_theory.batch.tasks import TaskOptions, allan_task
+
+    with pytest.raises(ValueError, match="--resample HZ"):
+        allan_task(str(bursty_npz), TaskOptions())
+    rows = allan_task(str(bursty_npz), TaskOptions(resample=10.0))
+    assert [row.axis for row in rows] == ["wx", "wy"] and rows[0].sample_rate_hz == 10.0
