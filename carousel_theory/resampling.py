@@ -8,13 +8,14 @@ Method
 
 Why bin means and not interpolation
     The Allan variance (TIM 2014 eq. (20)) is the variance of differences of averages over τ. A bin
-    mean is the average of the rate samples in the bin, so an average over τ = mT of bin means is an
-    average of raw samples, and white noise stays uncorrelated from bin to bin. Linear interpolation
-    makes each grid value a weighted mean of two neighbouring samples instead: it correlates
-    neighbouring values, a low-pass filter that lowers the Allan variance of white noise at the shortest
-    τ (by up to a half: a midpoint (a + b)/2 has variance σ²/2). On a uniform input at its own rate each
-    bin holds exactly one sample and the output equals the input; at f/k it is the means of
-    consecutive blocks of k samples.
+    mean averages the rate samples taken in the bin, so an average over τ = mT of bin means is a
+    weighted average of the samples taken in those τ seconds and of no others, and white noise stays
+    uncorrelated from bin to bin. Linear interpolation makes each grid value a weighted mean of the two
+    samples around it instead, which may lie in different bins: it correlates neighbouring values, a
+    low-pass filter that lowers the Allan variance of white noise at the shortest τ (by up to a half:
+    a midpoint (a + b)/2 has variance σ²/2). On a uniform input at its own rate each bin holds exactly
+    one sample and the output equals the input; at f/k it is the means of consecutive blocks of k
+    samples.
 
 What is refused
     Empty bins are filled by linear interpolation between the neighbouring bin means only when they

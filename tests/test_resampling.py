@@ -109,6 +109,14 @@ def test_integer_nanosecond_timestamps_with_clock_jitter_are_uniform(tmp_path):
     np.savez(path, t=stamps, wx=_white(2000, 6))
     recording = load_recording(path, time_unit="ns")
     assert recording.uniform and recording.sample_rate == 100.0
+    text = tmp_path / "ns.csv"  # parsed as float64: 1.7·10¹⁸ ns are known to 256 ns
+    text.write_text(
+        "t,wx\n"
+        + "".join(
+            f"{stamp},{value!r}\n" for stamp, value in zip(stamps, _white(2000, 6).tolist(), strict=True)
+        )
+    )
+    assert load_recording(text, time_unit="ns").sample_rate == 100.0
     drifting = stamps.copy()
     drifting[1000:] += 2_000_000  # a 2 ms jump: the samples themselves are no longer uniform
     np.savez(path, t=drifting, wx=_white(2000, 6))
