@@ -186,6 +186,15 @@ def test_hdf5_values_are_counted_before_they_are_read(tmp_path):
         load_recording(path, max_values=5)
 
 
+def test_hdf5_compound_table_counts_every_field(tmp_path, columns):
+    path = tmp_path / "r.h5"
+    table = np.zeros(ROWS, dtype=[("t", "f8"), ("wx", "f8"), ("wy", "f8")])
+    with h5py.File(path, "w") as handle:
+        handle.create_dataset("table", data=table)
+    with pytest.raises(ValueError, match=rf"declare {3 * ROWS} values"):
+        load_recording(path, max_values=3 * ROWS - 1)
+
+
 def test_missing_h5py_is_one_line_naming_the_extra(tmp_path, columns, monkeypatch, capsys):
     path = _hdf5(tmp_path / "r.h5", **columns)
     monkeypatch.setitem(sys.modules, "h5py", None)  # as if not installed

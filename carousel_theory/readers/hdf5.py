@@ -103,7 +103,8 @@ def read_hdf5(path: Path, max_values: int, *, matlab: bool = False) -> dict[str,
     try:
         with h5py.File(path, "r") as handle:
             datasets = _numeric_datasets(handle, matlab)
-            declared = sum(math.prod(dataset.shape) for dataset in datasets)
+            # A compound table holds one value per field and row.
+            declared = sum(math.prod(d.shape) * len(d.dtype.names or (None,)) for d in datasets)
             check_values(declared, max_values, path, "its datasets declare")
             columns: dict[str, np.ndarray] = {}
             for name, dataset in zip(_column_names(datasets), datasets, strict=True):
