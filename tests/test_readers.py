@@ -290,6 +290,7 @@ def _only_text(path: Path, columns: dict[str, np.ndarray]) -> Path:
     return path
 
 
+_UNEVEN = r"non-uniform timestamps: .* t\[20\]-t\[19\]=0\.026 s"
 HOSTILE = [
     ("hdf5-truncated", ".h5", _truncated(_hdf5, ".h5", 0.5), {}, r"r\.h5: not a readable HDF5 file"),
     ("hdf5-text", ".h5", _text_named(".h5"), {}, r"not an HDF5 file \(no HDF5 signature"),
@@ -301,12 +302,12 @@ HOSTILE = [
         r"\['gyro_y'\] not found",
     ),
     ("hdf5-nan", ".h5", _with_nan(_hdf5, "wx", 7), {}, r"column 'wx' holds nan at row 7"),
-    ("hdf5-non-uniform", ".h5", _uneven(_hdf5, 20), {}, r"non-uniform timestamps: .* t\[20\]-t\[19\]=0\.026 s"),
+    ("hdf5-non-uniform", ".h5", _uneven(_hdf5, 20), {}, _UNEVEN),
     ("mat-truncated", ".mat", _truncated(_mat, ".mat", 0.8), {}, r"r\.mat: not a readable MATLAB \.mat file"),
     ("mat-text", ".mat", _text_named(".mat"), {}, r"r\.mat: not a"),
     ("mat-wrong-column", ".mat", lambda p, c: _mat(p, **c), {"columns": {"wx": "gx"}}, r"\['gx'\] not found"),
     ("mat-nan", ".mat", _with_nan(_mat, "wy", 3), {}, r"column 'wy' holds nan at row 3"),
-    ("mat-non-uniform", ".mat", _uneven(_mat, 20), {}, r"non-uniform timestamps: .* t\[20\]-t\[19\]=0\.026 s"),
+    ("mat-non-uniform", ".mat", _uneven(_mat, 20), {}, _UNEVEN),
     ("mat-no-numbers", ".mat", _only_text, {}, "no numeric vector or matrix"),
     (
         "mat-too-many",
