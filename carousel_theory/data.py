@@ -219,8 +219,8 @@ def _check_timing(
     if bad.size:
         i = int(bad[0])
         raise ValueError(
-            f"{source}: timestamps are not strictly increasing: t[{i}]={time[i]!r} then "
-            f"t[{i + 1}]={time[i + 1]!r} s after the first ({bad.size} such steps)"
+            f"{source}: timestamps are not strictly increasing: t[{i}]={float(time[i])!r} then "
+            f"t[{i + 1}]={float(time[i + 1])!r} s after the first ({bad.size} such steps)"
             + ("; --resample HZ averages repeated timestamps" if steps[i] == 0 else "")
         )
     note, jitter = _timing_note(time, resolution)
