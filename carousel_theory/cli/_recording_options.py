@@ -13,6 +13,7 @@ __all__ = [
     "add_recording_options",
     "column_mapping",
     "reader_keywords",
+    "reader_options_given",
     "resample_rate",
 ]
 
@@ -89,3 +90,13 @@ def reader_keywords(args: argparse.Namespace) -> dict[str, Any]:
         "resample": args.resample,
         "delimiter": args.delimiter,
     }
+
+
+def reader_options_given(args: argparse.Namespace) -> list[str]:
+    """The options of :func:`add_reader_options` given with other than their default values."""
+    defaults = {"time_unit": None, "max_values": MAX_VALUES, "resample": None, "delimiter": "auto"}
+    return [
+        f"--{name.replace('_', '-')}"
+        for name, value in reader_keywords(args).items()
+        if value != defaults[name]
+    ]

@@ -14,8 +14,7 @@ import numpy as np
 
 from carousel_theory._validation import check_fractional_order, check_positive_integer, check_positive_real
 from carousel_theory.cli._files import write_or_compare
-from carousel_theory.cli._recording_options import add_reader_options, reader_keywords
-from carousel_theory.data import MAX_VALUES
+from carousel_theory.cli._recording_options import add_reader_options, reader_keywords, reader_options_given
 from carousel_theory.output_files import atomic_output, plan_outputs, write_text_atomic
 
 
@@ -82,8 +81,8 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(
                 f"DATA={str(args.data)!r}: not used with --table1 (use --data DIR for measured data)"
             )
-        if args.time_unit is not None or args.max_values != MAX_VALUES or args.resample is not None:
-            raise ValueError("--time-unit, --max-values, --resample: apply to DATA, not to --table1")
+        if given := reader_options_given(args):
+            raise ValueError(f"{', '.join(given)}: apply to DATA, not to --table1")
         return _run_table1(args)
     if args.data is None:
         raise ValueError("DATA: a recording is required (or use --table1)")

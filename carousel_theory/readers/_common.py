@@ -7,7 +7,14 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["MAX_MATRIX_COLUMNS", "MAX_VALUES", "check_values", "looks_numeric", "matrix_columns"]
+__all__ = [
+    "MAX_MATRIX_COLUMNS",
+    "MAX_VALUES",
+    "check_values",
+    "is_matrix_shape",
+    "looks_numeric",
+    "matrix_columns",
+]
 
 #: Most values (all columns together) a reader expands into memory unless the caller raises the limit
 #: (``max_values=``, ``--max-values``): 10⁹ values are 8 GB as float64, 12 h at 1 kHz of 23 columns.
