@@ -37,6 +37,8 @@ Model Allan variance
 from __future__ import annotations
 
 import functools
+import math
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
@@ -52,6 +54,7 @@ from carousel_theory._validation import (
     check_positive_integer,
     check_positive_real,
 )
+from carousel_theory.data import RESERVED_COLUMN_NAMES, TIME_COLUMN_NAMES, Recording, recording_from_arrays
 from carousel_theory.noise_model import (
     QUANTIZATION_ALLAN_VARIANCE,
     RRW_ALLAN_VARIANCE,
@@ -68,8 +71,10 @@ __all__ = [
     "RRW_ALLAN_VARIANCE",
     "WHITE_ALLAN_VARIANCE",
     "AllanResult",
+    "AllanResultsByAxis",
     "allan_covariance",
     "allan_variance",
+    "check_tau_range",
     "difference_covariance",
     "equivalent_degrees_of_freedom",
     "flicker_allan_variance",
@@ -571,45 +576,49 @@ def _check_options(sample_rate: Any, estimator: Any, noise: Any, confidence: Any
 
 def allan_variance(
     y: Any,
-    sample_rate: float,
+    sample_rate: float | None = None,
     taus: Any = "octave",
     *,
     estimator: str = "overlapping",
     noise: Any = "white",
     confidence: float = 0.95,
-) -> AllanResult:
+    tau_range: tuple[float | None, float | None] | None = None,
+) -> Any:
     """Allan variance of the rate samples ``y`` with χ² confidence intervals.
 
     Parameters
     ----------
-    y : 1-D array
-        Rate samples (rad/s), uniformly sampled.
+    y : 1-D array, 2-D array, pandas DataFrame or Recording
+        Rate samples (rad/s), uniformly sampled. A 1-D array gives an :class:`AllanResult`, the others an
+        :class:`AllanResultsByAxis`: a 2-D array one axis per column (wx, wy, wz; w0, w1, … beyond
+        three), a DataFrame one per column except its time column (t, time, time_s, timestamp: s or
+        datetime64, checked for uniform steps) and those of ``data.RESERVED_COLUMN_NAMES``.
     sample_rate : float
-        Samples per second.
+        Samples per second (not for a Recording or a DataFrame with a time column).
     taus : "octave" or array of float
-        "octave": τ = 2^k/f_s up to a third of the record. Otherwise averaging times in s, each a whole
-        number of samples and at most a third of the record.
+        "octave": τ = 2^k/f_s up to a third of the record; or τ in s, whole numbers of samples, ≤ n/3.
+    tau_range : (low, high), optional
+        Only τ in [low, high] s; either end may be None (open), e.g. ``(0.1, None)``.
     estimator : {"overlapping", "non-overlapping"}
         "non-overlapping" is TIM 2014 eq. (20).
     noise : str or NoiseModel
-        The noise assumed for the degrees of freedom: "white", "rrw", "flicker" (d = 1/2, the 1/f spectrum),
-        "quantization", or a fitted :class:`carousel_theory.fitting.NoiseModel`.
+        Assumed for the degrees of freedom: "white", "rrw", "flicker" (d = 1/2), "quantization", or a model.
     confidence : float
         Level of the intervals, in (0, 1).
     """
-    sample_rate, estimator, confidence = _check_options(sample_rate, estimator, noise, confidence)
+    options = {"estimator": estimator, "noise": noise, "confidence": confidence, "tau_range": tau_range}
+    if isinstance(y, Recording) or _is_data_frame(y) or np.ndim(y) == 2:
+        return _allan_variance_by_axis(y, sample_rate, taus, options)
+    sample_rate, estimator, confidence = _check_options(
+        _required_rate(sample_rate), estimator, noise, confidence
+    )
+    check_tau_range(tau_range)
     samples = check_finite_array("y", y, min_length=3)
     length = len(samples)
-    sizes, octave = _cluster_sizes(taus, sample_rate, length)
-    # The Allan variance ignores a constant; removing the mean keeps running sums small and accurate.
-    centered = samples - samples.mean()
-    if estimator == "overlapping":
-        sums = _overlapping_sums(centered, sizes, octave)
-        terms = length - 2 * sizes + 1
-    else:
-        sums = _non_overlapping_sums(centered, sizes, octave)
-        terms = length // sizes - 1
-    avar = sums / (2.0 * sizes.astype(np.float64) ** 2 * terms)
+    sizes, avar, terms = _estimates(samples, _cluster_sizes(taus, sample_rate, length), estimator)
+    if tau_range is not None:
+        kept = _in_tau_range(sizes / sample_rate, tau_range)
+        sizes, terms, avar = sizes[kept], terms[kept], avar[kept]
     edf = _degrees_of_freedom(noise, sizes, terms, length, sample_rate, estimator)
     low, high = _chi_square_interval(avar, edf, confidence)
     return AllanResult(
@@ -625,6 +634,32 @@ def allan_variance(
         confidence=confidence,
         noise=noise if isinstance(noise, str) else "model",
     )
+
+
+def _required_rate(sample_rate: Any) -> Any:
+    if sample_rate is None:
+        raise ValueError(
+            "sample_rate=None: required for a 1-D array of rates (a DataFrame with a time column or a "
+            "Recording carries its own)"
+        )
+    return sample_rate
+
+
+def _estimates(
+    samples: np.ndarray, cluster_sizes: tuple[np.ndarray, bool], estimator: str
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(cluster sizes, Allan variance, number of squared differences averaged), TIM 2014 eq. (20)."""
+    sizes, octave = cluster_sizes
+    length = len(samples)
+    # The Allan variance ignores a constant; removing the mean keeps running sums small and accurate.
+    centered = samples - samples.mean()
+    if estimator == "overlapping":
+        sums = _overlapping_sums(centered, sizes, octave)
+        terms = length - 2 * sizes + 1
+    else:
+        sums = _non_overlapping_sums(centered, sizes, octave)
+        terms = length // sizes - 1
+    return sizes, sums / (2.0 * sizes.astype(np.float64) ** 2 * terms), terms
 
 
 def _chi_square_interval(
@@ -742,3 +777,99 @@ def graycode_allan_variance(n: int, m: int, C: float = 1.0) -> Any:
     except ImportError as error:  # the Gray-code module is a separate part of the package
         raise ImportError(f"carousel_theory.graycode is not available ({error})") from None
     return allan_variance_exact(n, m, C)
+
+
+# --- inputs: τ ranges, several axes at once ---------------------------------------------------------
+
+
+def check_tau_range(tau_range: Any) -> tuple[float, float]:
+    """``tau_range`` as (low, high) in s, an open end (None) as 0 or ∞; None means (0, ∞).
+
+    Each given end must be a positive finite number of seconds and low must not exceed high.
+    """
+    if tau_range is None:
+        return 0.0, math.inf
+    if isinstance(tau_range, str) or not hasattr(tau_range, "__len__") or len(tau_range) != 2:
+        raise ValueError(f"tau_range={tau_range!r}: must be (low, high) in seconds, either end None")
+    low, high = (
+        default if value is None else float(check_positive_real("tau_range", value))
+        for value, default in zip(tau_range, (0.0, math.inf), strict=True)
+    )
+    if not low <= high:
+        raise ValueError(f"tau_range={tau_range!r}: low must not exceed high")
+    if not math.isfinite(low):
+        raise ValueError(f"tau_range={tau_range!r}: low must be finite")
+    return low, high
+
+
+def _in_tau_range(tau: np.ndarray, tau_range: Any) -> np.ndarray:
+    """The indices of ``tau`` within ``tau_range`` (to 1e-12 relative); refuses an empty selection."""
+    low, high = check_tau_range(tau_range)
+    kept = np.flatnonzero((tau >= low * (1 - 1e-12)) & (tau <= high * (1 + 1e-12)))
+    if kept.size == 0:
+        raise ValueError(
+            f"tau_range={tau_range!r}: holds none of the τ from {tau[0]:.6g} s to {tau[-1]:.6g} s"
+        )
+    return kept
+
+
+@dataclass(frozen=True)
+class AllanResultsByAxis(Mapping[str, AllanResult]):
+    """Allan variance results of several axes, read like a dict: ``results["wx"]``.
+
+    Attributes
+    ----------
+    results : dict[str, AllanResult]
+        One result per axis, in the order of the input's columns.
+    sample_rate : float
+        Samples per second of every axis.
+    """
+
+    results: dict[str, AllanResult]
+    sample_rate: float
+
+    def __getitem__(self, axis: str) -> AllanResult:
+        return self.results[axis]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.results)
+
+    def __len__(self) -> int:
+        return len(self.results)
+
+
+def _is_data_frame(y: Any) -> bool:
+    return hasattr(y, "columns") and hasattr(y, "to_numpy")  # pandas, without importing it
+
+
+def _axes_recording(y: Any, sample_rate: float | None) -> Recording:
+    """A Recording, a 2-D array or a DataFrame as a checked Recording (rates taken as rad/s)."""
+    if isinstance(y, Recording):
+        if sample_rate is not None:
+            raise ValueError(f"sample_rate={sample_rate!r}: a Recording carries its own; leave it unset")
+        return y
+    if not _is_data_frame(y):
+        return recording_from_arrays(np.asarray(y), sample_rate=sample_rate, source="y")
+    names = [str(name) for name in y.columns]
+    time_name = next((name for name in names if name.lower() in TIME_COLUMN_NAMES), None)
+    axes = [name for name in names if name.lower() not in RESERVED_COLUMN_NAMES]
+    return recording_from_arrays(
+        {name: y[name].to_numpy() for name in axes},
+        time=None if time_name is None else y[time_name].to_numpy(),
+        sample_rate=sample_rate,
+        source="DataFrame",
+    )
+
+
+def _allan_variance_by_axis(
+    y: Any, sample_rate: float | None, taus: Any, options: dict[str, Any]
+) -> AllanResultsByAxis:
+    """:func:`allan_variance` of each axis of a Recording, a 2-D array or a DataFrame."""
+    recording = _axes_recording(y, sample_rate)
+    if not recording.uniform:
+        raise ValueError(f"{recording.source}: {recording.notes[0]} (uniform sampling is required here)")
+    results = {
+        name: allan_variance(values, recording.sample_rate, taus, **options)
+        for name, values in recording.rates.items()
+    }
+    return AllanResultsByAxis(results, recording.sample_rate)

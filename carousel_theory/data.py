@@ -1,78 +1,69 @@
-"""Reading measured gyro recordings (CSV, NPZ, arrays, a pandas DataFrame) into one checked form.
+"""Reading measured gyro recordings (text, NPZ, HDF5, MATLAB, arrays, a DataFrame) into one checked form.
 
 A :class:`Recording` holds time (s), gyro rates (rad/s), the sample rate (Hz) and optional temperature
-(°C) and carouseling angle (rad). Every reader checks, before returning, for an empty input, a file that
-is not what its extension says, NaN/inf (naming the column and the row), non-monotonic or non-uniform
+(°C) and carouseling angle (rad). The files are read by :mod:`carousel_theory.readers` (comma,
+semicolon, tab or whitespace separated text; NPZ; HDF5; MATLAB ``.mat``), which bound what they expand
+(``max_values``) and name the row, column or member of a bad file. Every recording is then checked,
+before it is returned, for NaN/inf (naming the column and the row), non-monotonic or non-uniform
 timestamps and gaps (naming the first index and time). Irregular timing is refused unless the caller
-asks to keep it (``irregular="keep"``); the recording is then marked ``uniform=False`` and analyses that
-need a uniform sample rate (the Allan variance) refuse it. Files are only ever opened for reading.
-
-Long recordings (12 h at 1 kHz is 4.3·10⁷ rows)
-    CSV is parsed by ``pyarrow.csv`` when pyarrow is installed (the ``data`` extra; the core needs only
-    NumPy): its streaming reader parses blocks of 4 MB on all cores (larger blocks in flight cost memory)
-    straight into float64 columns, without holding the text in memory, about ten times faster than
-    ``numpy.loadtxt``; the columns are joined one at a time, so the peak is about one extra column;
-    pandas' C engine is as fast on one core but names neither the row nor the column of a bad value.
-    Without pyarrow, ``numpy.loadtxt`` is used. When the fast parser refuses a file, the file is scanned
-    once more, line by line, to name the row (counted from 0, header excluded) and the column of the first
-    bad field; that scan reads lines of at most ``MAX_LINE_BYTES``. The first ``BINARY_CHECK_BYTES`` (64
-    KiB) are read to check the header and that the file is text (no NUL byte, valid UTF-8) before the rest
-    is parsed.
-    An NPZ written without compression (``numpy.savez``) is memory-mapped, read-only: its arrays are
-    paged in as the analysis touches them. A compressed NPZ (``savez_compressed``) is decompressed into
-    memory. The headers of all members are read first: a file whose headers declare more than
-    ``max_values`` values (default ``MAX_VALUES``), or whose zip directory states an uncompressed size
-    other than the header's shape implies, is refused before anything is expanded.
+resamples it (``resample=HZ``: bin means on a uniform grid, :mod:`carousel_theory.resampling`) or asks
+to keep it (``irregular="keep"``); a kept recording is marked ``uniform=False`` and analyses that need a
+uniform sample rate (the Allan variance) refuse it. Files are only ever opened for reading.
 
 Timestamps
     A numeric time column is in s unless ``time_unit`` says ms, us or ns; ``datetime64`` and
     ``timedelta64`` columns are converted from their own unit. The first timestamp is subtracted
     before scaling (in integer arithmetic for integer and date columns), so epoch timestamps keep
     their steps exact; the recording's ``time`` counts from it and ``time_origin`` keeps it.
+    Timestamps are uniform when every step is within ``UNIFORM_TOLERANCE`` (relative) of the median
+    step, or when every timestamp lies within ``JITTER_TOLERANCE`` of a step from the uniform grid
+    through the first and the last: evenly spaced samples whose clock stamps them with a little
+    jitter (a host clock in nanoseconds), which does not accumulate.
 """
 
 from __future__ import annotations
 
-import codecs
-import csv
 import math
-import zipfile
 from collections.abc import Mapping
-from dataclasses import dataclass, field
-from itertools import count
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from carousel_theory._validation import check_positive_integer, check_positive_real
+from carousel_theory.readers import DELIMITERS, MAX_VALUES, read_table
+from carousel_theory.readers.text import BINARY_CHECK_BYTES, MAX_LINE_BYTES
+from carousel_theory.resampling import block_average, default_resample_rate
 from carousel_theory.units import rate_to_rad_per_s
 
 __all__ = [
+    "BINARY_CHECK_BYTES",
+    "DELIMITERS",
+    "MAX_LINE_BYTES",
     "MAX_VALUES",
     "RESERVED_COLUMN_NAMES",
+    "TIME_COLUMN_NAMES",
     "TIME_UNITS",
     "Recording",
     "load_recording",
     "recording_from_arrays",
+    "resample_recording",
 ]
 
 #: Relative spread of the time steps tolerated as "uniform" (clock jitter of float timestamps).
 UNIFORM_TOLERANCE = 1e-6
+#: Largest distance, in steps, of a timestamp from the uniform grid through the first and the last that
+#: still counts as uniform sampling (jitter of the timestamps, not of the samples).
+JITTER_TOLERANCE = 1e-3
 #: A time step longer than this many nominal steps is reported as a gap.
 GAP_FACTOR = 1.5
-#: Most values (all columns together) a reader expands into memory unless the caller raises the limit
-#: (``max_values=``, ``--max-values``): 10⁹ values are 8 GB as float64, 12 h at 1 kHz of 23 columns.
-MAX_VALUES = 10**9
 #: Seconds per unit of a numeric time column (``time_unit=``, ``--time-unit``).
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
-#: Bytes of a CSV file checked for binary content (NUL bytes, invalid UTF-8) before it is parsed; the
-#: header row must end within them.
-BINARY_CHECK_BYTES = 1 << 16
-#: Longest line the scan that names a bad CSV field reads; a longer one is refused, not held in memory.
-MAX_LINE_BYTES = 1 << 20
 
 _TIME_NAMES = ("t", "time", "time_s", "timestamp")
+#: Column names (compared in lower case) read as the time column when no mapping says otherwise.
+TIME_COLUMN_NAMES = _TIME_NAMES
 _TEMPERATURE_NAMES = ("temp", "temperature")
 _ANGLE_NAMES = ("phi", "angle")
 _RATE_PREFIXES = ("w", "gyro", "omega")
@@ -163,6 +154,57 @@ def _check_column(name: str, values: Any, source: str, expected_length: int | No
     return array
 
 
+def _grid_deviation(time: np.ndarray) -> float:
+    """Largest distance, in s, of a timestamp from the uniform grid through the first and the last."""
+    step = float(time[-1] - time[0]) / (len(time) - 1)
+    return float(np.max(np.abs(time - np.arange(len(time)) * step)))
+
+
+def _timing_note(time: np.ndarray, resolution: float) -> tuple[str | None, float]:
+    """(what is irregular about ``time``: a gap, uneven steps, or None; the timestamps' jitter in s).
+
+    ``time`` is strictly increasing from 0. The jitter is the largest distance from the uniform grid,
+    computed only when some step is uneven (0 otherwise).
+    """
+    steps = np.diff(time)
+    nominal = float(np.median(steps))
+    tolerance = UNIFORM_TOLERANCE * nominal + resolution
+    gaps = np.flatnonzero(steps > GAP_FACTOR * nominal + resolution)
+    if gaps.size:
+        i = int(gaps[0])
+        return (
+            f"gap: {gaps.size} steps longer than {GAP_FACTOR} x the median step {nominal:.6g} s; the first "
+            f"is between t[{i}]={time[i]:.6g} s and t[{i + 1}]={time[i + 1]:.6g} s"
+        ), 0.0
+    uneven = np.flatnonzero(np.abs(steps - nominal) > tolerance)
+    if uneven.size == 0:
+        return None, 0.0
+    jitter = _grid_deviation(time)
+    if jitter <= JITTER_TOLERANCE * float(time[-1]) / (len(time) - 1) + resolution:
+        return None, jitter  # evenly spaced samples, jittery stamps
+    i = int(uneven[0])
+    return (
+        f"non-uniform timestamps: {uneven.size} steps differ from the median step {nominal:.6g} s by "
+        f"more than {tolerance:.3g} s ({UNIFORM_TOLERANCE:g} relative + the timestamps' resolution "
+        f"{resolution:.3g} s), and the timestamps stray from a uniform grid by more than "
+        f"{JITTER_TOLERANCE:g} of a step; the first is t[{i + 1}]-t[{i}]={steps[i]:.6g} s"
+    ), jitter
+
+
+def _resample_advice(time: np.ndarray) -> str:
+    """How to read an irregular recording anyway, with the rate :func:`default_resample_rate` allows."""
+    rate = default_resample_rate(time)
+    suggestion = (
+        f" ({rate:.6g} Hz is the highest f/2^k, f the mean rate, whose empty bins can be bridged)"
+        if rate is not None
+        else " (no rate down to 1/2048 of the mean rate bridges its gaps: analyse the parts separately)"
+    )
+    return (
+        "uniform sampling is required here; resample onto a uniform grid by bin means with --resample HZ "
+        f"on the command line or load_recording(..., resample=HZ) in Python{suggestion}"
+    )
+
+
 def _check_timing(
     time: np.ndarray, resolution: float, source: str, irregular: str
 ) -> tuple[float, bool, tuple[str, ...]]:
@@ -177,41 +219,22 @@ def _check_timing(
     if bad.size:
         i = int(bad[0])
         raise ValueError(
-            f"{source}: timestamps are not strictly increasing: t[{i}]={time[i]!r} then "
-            f"t[{i + 1}]={time[i + 1]!r} s after the first ({bad.size} such steps)"
+            f"{source}: timestamps are not strictly increasing: t[{i}]={float(time[i])!r} then "
+            f"t[{i + 1}]={float(time[i + 1])!r} s after the first ({bad.size} such steps)"
+            + ("; --resample HZ averages repeated timestamps" if steps[i] == 0 else "")
         )
-    nominal = float(np.median(steps))
-    tolerance = UNIFORM_TOLERANCE * nominal + resolution
-    gaps = np.flatnonzero(steps > GAP_FACTOR * nominal + resolution)
-    uneven = np.flatnonzero(np.abs(steps - nominal) > tolerance)
-    notes: list[str] = []
-    if gaps.size:
-        i = int(gaps[0])
-        notes.append(
-            f"gap: {gaps.size} steps longer than {GAP_FACTOR} x the median step {nominal:.6g} s; the first "
-            f"is between t[{i}]={time[i]:.6g} s and t[{i + 1}]={time[i + 1]:.6g} s"
-        )
-    elif uneven.size:
-        i = int(uneven[0])
-        notes.append(
-            f"non-uniform timestamps: {uneven.size} steps differ from the median step {nominal:.6g} s by "
-            f"more than {tolerance:.3g} s ({UNIFORM_TOLERANCE:g} relative + the timestamps' resolution "
-            f"{resolution:.3g} s); the first is t[{i + 1}]-t[{i}]={steps[i]:.6g} s"
-        )
-    if notes and irregular == "refuse":
-        raise ValueError(
-            f"{source}: {notes[0]} (uniform sampling is required here; in Python, "
-            "load_recording(..., irregular='keep') keeps the timestamps for analyses that resample them, "
-            "and `carousel-theory loop` averages such recordings onto a uniform grid)"
-        )
-    if notes:
+    note, jitter = _timing_note(time, resolution)
+    if note is not None and irregular == "refuse":
+        raise ValueError(f"{source}: {note} ({_resample_advice(time)})")
+    if note is not None:
         # The nominal rate of irregular data is the mean rate, not the median: it keeps duration right.
-        return (len(time) - 1) / float(time[-1] - time[0]), False, tuple(notes)
+        return (len(time) - 1) / float(time[-1] - time[0]), False, (note,)
     # The mean rate over the whole record, rounded to 9 significant digits, or fewer when the
-    # timestamps' resolution allows fewer (epoch seconds in float64: 2.4·10⁻⁷ s): float timestamps such
-    # as i/100 carry rounding that would otherwise leak into every τ (0.00999999999999801 s).
+    # timestamps' resolution (or jitter) allows fewer (epoch seconds in float64: 2.4·10⁻⁷ s): float
+    # timestamps such as i/100 carry rounding that would otherwise leak into every τ (0.00999999999999801 s).
     span = float(time[-1] - time[0])
-    digits = 9 if resolution <= 0 else min(9, max(1, math.floor(-math.log10(resolution / span))))
+    spread = max(resolution, jitter)
+    digits = 9 if spread <= 0 else min(9, max(1, math.floor(-math.log10(spread / span))))
     return float(f"{(len(time) - 1) / span:.{digits}g}"), True, ()
 
 
@@ -226,14 +249,15 @@ def recording_from_arrays(
     source: str = "arrays",
     irregular: str = "refuse",
     time_unit: str | None = None,
+    resample: float | str | None = None,
 ) -> Recording:
     """Build a checked :class:`Recording` from arrays.
 
     Parameters
     ----------
-    rates : mapping of name to 1-D array, or a pandas DataFrame
-        The gyro columns, in ``units``. A DataFrame contributes every column (use ``time=`` etc. for the
-        others, or pass ``df[["wx", "wy"]]``).
+    rates : mapping of name to 1-D array, a pandas DataFrame, or a 2-D array
+        The gyro columns, in ``units``: every column of a DataFrame (pass ``df[["wx", "wy"]]``); one axis
+        per column of a 2-D array, named wx, wy, wz (w0, w1, … beyond three).
     time : 1-D array, optional
         Sample times in ``time_unit`` (numbers) or ``datetime64``/``timedelta64`` values. The
         recording's ``time`` counts from the first of them (kept as ``time_origin``). Without it,
@@ -249,6 +273,8 @@ def recording_from_arrays(
     time_unit : {"s", "ms", "us", "ns"}, optional
         Unit of a numeric time column (default s), e.g. "ms" for epoch milliseconds. Not allowed with a
         ``datetime64``/``timedelta64`` column, which carries its own unit.
+    resample : float or "auto", optional
+        Bin means on a uniform grid of this many Hz (:mod:`carousel_theory.resampling`); needs ``time``.
     """
     _check_reading_options(irregular, time_unit, source)
     rates = _rate_mapping(rates, source)
@@ -256,17 +282,17 @@ def recording_from_arrays(
         sample_rate = float(check_positive_real("sample_rate", sample_rate))
     converted = _converted_rates(rates, units, source)
     length = len(next(iter(converted.values())))
+    if resample is not None:
+        return _resampled_from_arrays(
+            converted, time, temperature, angle, resample, source, time_unit, sample_rate
+        )
     axis = _time_axis(time, sample_rate, length, source, irregular, time_unit)
-    temperature_array = (
-        None if temperature is None else _check_column("temperature", temperature, source, length)
-    )
-    angle_array = None if angle is None else _check_column("angle", angle, source, length)
     return Recording(
         time=axis.time,
         rates=converted,
         sample_rate=float(axis.sample_rate),
-        temperature=temperature_array,
-        angle=angle_array,
+        temperature=_optional_column("temperature", temperature, source, length),
+        angle=_optional_column("angle", angle, source, length),
         source=source,
         uniform=axis.uniform,
         notes=axis.notes,
@@ -274,10 +300,17 @@ def recording_from_arrays(
     )
 
 
+def _optional_column(name: str, values: Any, source: str, length: int) -> np.ndarray | None:
+    return None if values is None else _check_column(name, values, source, length)
+
+
 def _rate_mapping(rates: Any, source: str) -> Mapping[str, Any]:
-    """``rates`` as a non-empty mapping of column name to values (a DataFrame's columns)."""
+    """``rates`` as a non-empty mapping of column name to values (a DataFrame's or a 2-D array's columns)."""
     if hasattr(rates, "columns") and hasattr(rates, "to_numpy"):  # a DataFrame, without importing pandas
         rates = {str(name): rates[name].to_numpy() for name in rates.columns}
+    elif isinstance(rates, np.ndarray) and rates.ndim == 2:
+        names = ("wx", "wy", "wz") if rates.shape[1] <= 3 else tuple(f"w{j}" for j in range(rates.shape[1]))
+        rates = {name: rates[:, j] for j, name in enumerate(names[: rates.shape[1]])}
     if not isinstance(rates, Mapping):
         raise TypeError(
             f"rates={type(rates).__name__}: must be a mapping of column name to array, or a DataFrame"
@@ -285,6 +318,95 @@ def _rate_mapping(rates: Any, source: str) -> Mapping[str, Any]:
     if len(rates) == 0:
         raise ValueError(f"{source}: no gyro columns (rates is empty)")
     return rates
+
+
+def _check_resample(resample: Any, sample_rate: float | None) -> float | None:
+    """The rate of ``resample=`` in Hz, or None for "auto"."""
+    if sample_rate is not None:
+        raise ValueError(
+            f"sample_rate={sample_rate!r} and resample={resample!r}: give one (resample sets the rate)"
+        )
+    if resample == "auto":
+        return None
+    if isinstance(resample, str):
+        raise ValueError(f"resample={resample!r}: must be a rate in Hz or 'auto'")
+    return float(check_positive_real("resample", resample))
+
+
+def _averaged_recording(
+    offsets: np.ndarray,
+    resolution: float,
+    rates: Mapping[str, np.ndarray],
+    extras: dict[str, np.ndarray | None],
+    rate: float | None,
+    source: str,
+    origin: float,
+    notes: tuple[str, ...],
+) -> Recording:
+    """A uniform recording of the bin means of ``rates`` (rad/s) and of the temperature and angle."""
+    columns = {f"rate:{name}": values for name, values in rates.items()}
+    columns.update({f"extra:{name}": values for name, values in extras.items() if values is not None})
+    averaged = block_average(offsets, columns, rate, source, resolution)
+    recording = recording_from_arrays(
+        {name: averaged.columns[f"rate:{name}"] for name in rates},
+        sample_rate=averaged.sample_rate,
+        temperature=averaged.columns.get("extra:temperature"),
+        angle=averaged.columns.get("extra:angle"),
+        source=source,
+    )
+    return replace(recording, time_origin=origin, notes=(*notes, averaged.note))
+
+
+def _resampled_from_arrays(
+    rates: dict[str, np.ndarray],
+    time: Any,
+    temperature: Any,
+    angle: Any,
+    resample: Any,
+    source: str,
+    time_unit: str | None,
+    sample_rate: float | None,
+) -> Recording:
+    """:func:`recording_from_arrays` with ``resample=``: bin means on a uniform grid."""
+    if time is None:
+        raise ValueError(
+            f"resample={resample!r}: {source} has no time column to resample from (without one, its "
+            "samples are taken as uniform at sample_rate)"
+        )
+    rate = _check_resample(resample, sample_rate)
+    length = len(next(iter(rates.values())))
+    offsets, origin, resolution = _time_offsets(time, time_unit, source, length)
+    extras = {
+        "temperature": None
+        if temperature is None
+        else _check_column("temperature", temperature, source, length),
+        # An angle is unwrapped first: the mean of 359° and 1° is 360°, not 180°.
+        "angle": None if angle is None else np.unwrap(_check_column("angle", angle, source, length)),
+    }
+    return _averaged_recording(offsets, resolution, rates, extras, rate, source, origin, ())
+
+
+def resample_recording(recording: Recording, sample_rate: float | str = "auto") -> Recording:
+    """``recording`` averaged onto a uniform grid of ``sample_rate`` Hz (bin means; see
+    :mod:`carousel_theory.resampling` for the method and what it refuses).
+
+    ``"auto"``: the highest f̄/2^k (f̄ the mean rate) whose empty bins can be bridged. The result's notes
+    end with one sentence saying what was done; its ``time_origin`` is the input's first timestamp.
+    """
+    if not isinstance(recording, Recording):
+        raise TypeError(f"recording={recording!r}: must be a carousel_theory.data.Recording")
+    rate = _check_resample(sample_rate, None)
+    extras = {
+        "temperature": recording.temperature,
+        "angle": None if recording.angle is None else np.unwrap(recording.angle),
+    }
+    offsets = recording.time - recording.time[0]
+    origin = recording.time_origin + float(recording.time[0])
+    # The float timestamps the recording was read from were known to two spacings at their largest.
+    resolution = 2.0 * float(np.spacing(abs(recording.time_origin) + float(recording.time[-1])))
+    return _averaged_recording(
+        offsets, resolution, recording.rates, extras, rate, recording.source, origin, recording.notes
+    )
 
 
 def _check_reading_options(irregular: Any, time_unit: Any, source: Any) -> None:
@@ -398,6 +520,8 @@ def _datetime_offsets(
 
 def _is_rate_name(name: str) -> bool:
     lowered = name.lower()
+    if "[" in lowered:  # a column of a matrix (NAME[:,j]) is a gyro axis only when mapped explicitly
+        return False
     if lowered in _NON_RATE_NAMES or lowered in _TIME_NAMES or lowered in _TEMPERATURE_NAMES:
         return False
     if lowered in _ANGLE_NAMES:
@@ -410,232 +534,6 @@ def _pick(names: list[str], candidates: tuple[str, ...]) -> str | None:
         if name.lower() in candidates:
             return name
     return None
-
-
-def _read_npz(path: Path, max_values: int) -> dict[str, np.ndarray]:
-    with path.open("rb") as handle:
-        magic = handle.read(4)
-    if magic != b"PK\x03\x04":
-        raise ValueError(f"{path}: not an NPZ file (an NPZ is a zip archive; the file starts with {magic!r})")
-    try:
-        with zipfile.ZipFile(path) as archive:
-            members = [info for info in archive.infolist() if info.filename.endswith(".npy")]
-            values = sum(_member_values(archive, info, path) for info in members)
-            _check_values(values, max_values, path, "its arrays' headers declare")
-            mapped = {info.filename[:-4]: _mapped_member(path, info) for info in members}
-        if all(array is not None for array in mapped.values()):
-            return {name: array for name, array in mapped.items() if array is not None}
-        with np.load(path, allow_pickle=False) as loaded:
-            return {name: np.asarray(loaded[name]) for name in loaded.files}
-    except (ValueError, OSError, zipfile.BadZipFile) as error:
-        message = str(error)
-        if not message.startswith(str(path)):
-            message = f"{path}: not a readable NPZ file ({error})"
-        raise ValueError(message) from None
-
-
-def _check_values(values: int, max_values: int, path: Path, what: str) -> None:
-    """Refuse, before expanding them, more values than ``max_values``."""
-    if values > max_values:
-        raise ValueError(
-            f"{path}: {what} {values} values ({values * 8 / 1e9:.3g} GB as float64), more than "
-            f"max_values={max_values} (the default {MAX_VALUES} is 8 GB); raise max_values "
-            "(--max-values) if the machine has the memory"
-        )
-
-
-def _npy_header(handle: Any) -> tuple[tuple[int, ...], bool, np.dtype]:
-    """(shape, Fortran order, dtype) from the header of an .npy stream, leaving it at the data."""
-    version = np.lib.format.read_magic(handle)
-    read_header = (
-        np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
-    )
-    return read_header(handle)
-
-
-def _member_values(archive: zipfile.ZipFile, info: zipfile.ZipInfo, path: Path) -> int:
-    """The number of values an .npy member's header declares, checked against the zip directory.
-
-    Only the header is read (decompressing a few hundred bytes): the shape it declares bounds what the
-    member expands to, and the uncompressed size the zip directory states must match it exactly, so a
-    deflate bomb or a header claiming 10¹² samples is refused before anything is expanded.
-    """
-    with archive.open(info) as member:
-        shape, _, dtype = _npy_header(member)
-        header_bytes = member.tell()
-    if dtype.hasobject:
-        raise ValueError(
-            f"{path}: member {info.filename!r} holds Python objects ({dtype}); only numbers are read"
-        )
-    values = math.prod(int(n) for n in shape)
-    expected = header_bytes + values * dtype.itemsize
-    if info.file_size != expected:
-        raise ValueError(
-            f"{path}: member {info.filename!r} declares shape {shape} of {dtype} ({expected} bytes with its "
-            f"header) but the zip directory says it holds {info.file_size} bytes; the file is corrupt"
-        )
-    return values
-
-
-def _mapped_member(path: Path, info: zipfile.ZipInfo) -> np.ndarray | None:
-    """A read-only memory map of an uncompressed .npy member (None when compressed or an object array)."""
-    if info.compress_type != zipfile.ZIP_STORED:
-        return None
-    with path.open("rb") as handle:
-        handle.seek(info.header_offset)
-        local = handle.read(30)
-        if local[:4] != b"PK\x03\x04":
-            raise ValueError(f"member {info.filename!r}: bad local header")
-        name_length, extra_length = (
-            int.from_bytes(local[26:28], "little"),
-            int.from_bytes(local[28:30], "little"),
-        )
-        handle.seek(info.header_offset + 30 + name_length + extra_length)
-        shape, fortran_order, dtype = _npy_header(handle)
-        offset = handle.tell()
-    if dtype.hasobject:
-        return None
-    if int(np.prod(shape)) == 0:
-        return np.zeros(shape, dtype=dtype)
-    return np.memmap(
-        path, dtype=dtype, mode="r", offset=offset, shape=shape, order="F" if fortran_order else "C"
-    )
-
-
-def _csv_header(path: Path) -> tuple[list[str], str]:
-    """(column names, delimiter) from the first line; refuses binary or non-UTF-8 content.
-
-    Only the first ``BINARY_CHECK_BYTES`` are read here: a binary file (NUL bytes, a zip archive, bytes
-    that are not UTF-8) is refused before the rest of it is touched, and the header row must end in them.
-    """
-    with path.open("rb") as handle:
-        head = handle.read(BINARY_CHECK_BYTES)
-    whole = len(head) < BINARY_CHECK_BYTES
-    if b"\x00" in head or head[:4] == b"PK\x03\x04":
-        raise ValueError(f"{path}: not a CSV text file (binary content in the first {len(head)} bytes)")
-    try:
-        # An incremental decoder accepts a character cut by the block's end, and nothing else invalid.
-        text = codecs.getincrementaldecoder("utf-8-sig")().decode(head, final=whole)
-    except UnicodeDecodeError as error:
-        raise ValueError(
-            f"{path}: not a CSV text file (not UTF-8 at byte {error.start} of the first block)"
-        ) from None
-    if not whole and "\n" not in text and "\r" not in text:
-        raise ValueError(
-            f"{path}: not a CSV file (no line break in the first {BINARY_CHECK_BYTES} bytes: the header "
-            "row is missing or the file is not line-oriented text)"
-        )
-    lines = text.splitlines()
-    if not lines or not lines[0].strip():
-        raise ValueError(f"{path}: empty CSV file (no header row)")
-    header_line = lines[0]
-    delimiter = ","
-    for candidate in (",", ";", "\t"):
-        if candidate in header_line:
-            delimiter = candidate
-            break
-    header = [name.strip() for name in next(csv.reader([header_line], delimiter=delimiter))]
-    if any(_looks_numeric(name) for name in header):
-        raise ValueError(f"{path}: the first row {header_line!r} is not a header row (it holds numbers)")
-    if len(set(header)) != len(header):
-        raise ValueError(f"{path}: repeated column names in the header {header}")
-    if len(lines) < 2 and whole:
-        raise ValueError(f"{path}: the CSV file has a header but no data rows")
-    return header, delimiter
-
-
-def _read_csv(path: Path, max_values: int) -> dict[str, np.ndarray]:
-    header, delimiter = _csv_header(path)
-    try:
-        import pyarrow as arrow
-        import pyarrow.csv as arrow_csv
-    except ImportError:
-        return _read_csv_numpy(path, header, delimiter, max_values)
-    chunks: dict[str, list[np.ndarray]] = {name: [] for name in header}
-    rows = 0
-    try:
-        reader = arrow_csv.open_csv(
-            path,
-            read_options=arrow_csv.ReadOptions(skip_rows=1, column_names=header, block_size=1 << 22),
-            parse_options=arrow_csv.ParseOptions(delimiter=delimiter),
-            convert_options=arrow_csv.ConvertOptions(
-                column_types=dict.fromkeys(header, arrow.float64()), null_values=[""]  # "nan" stays NaN
-            ),
-            memory_pool=arrow.system_memory_pool(),  # freed blocks go back to the system at once
-        )
-        offset = 0
-        for batch in reader:  # batch by batch: the text is never held whole, and Arrow's buffers are freed
-            rows += batch.num_rows
-            _check_values(rows * len(header), max_values, path, f"its first {rows} rows already hold")
-            for index, name in enumerate(header):
-                _refuse_empty_fields(path, name, batch.column(index), offset)
-                chunks[name].append(batch.column(index).to_numpy(zero_copy_only=False))
-            offset += batch.num_rows
-    except (arrow.ArrowInvalid, UnicodeDecodeError) as error:
-        where = _locate_bad_field(path, header, delimiter, error)
-        raise ValueError(f"{path}: unreadable CSV data ({where})") from None
-    if not any(len(chunk) for chunk in chunks[header[0]]):
-        raise ValueError(f"{path}: the CSV file has a header but no data rows")
-    columns = {}
-    for name in header:  # one column at a time: the chunks and one column, never two copies of everything
-        columns[name] = np.concatenate(chunks.pop(name))
-        columns[name].setflags(write=False)  # ours alone: read-only, so rad/s columns need no copy
-    return columns
-
-
-def _refuse_empty_fields(path: Path, name: str, column: Any, offset: int) -> None:
-    """An empty field parses as null: name its row (a file cut in the middle of a row ends this way)."""
-    if column.null_count:
-        first = offset + int(np.flatnonzero(column.is_null().to_numpy(zero_copy_only=False))[0])
-        raise ValueError(
-            f"{path}: unreadable CSV data (row {first} (counted from 0, header excluded), column {name!r} "
-            "is empty: a row with a missing value, or a file cut off in the middle of its last row)"
-        )
-
-
-def _locate_bad_field(path: Path, header: list[str], delimiter: str, error: Exception) -> str:
-    """Scan the file line by line for the first row with a wrong field count or a non-number.
-
-    Lines are read at most ``MAX_LINE_BYTES`` at a time: a file without line breaks is refused, not
-    read whole into memory.
-    """
-    with path.open("r", encoding="utf-8-sig", errors="replace", newline="") as handle:
-        handle.readline(MAX_LINE_BYTES)  # the header, checked already
-        for row in count():
-            line = handle.readline(MAX_LINE_BYTES)
-            if not line:
-                break
-            where = f"row {row} (counted from 0, header excluded)"
-            if len(line) >= MAX_LINE_BYTES and not line.endswith(("\n", "\r")):
-                return f"{where} is longer than {MAX_LINE_BYTES} characters; not a CSV recording"
-            if "\x00" in line:
-                return f"{where} holds NUL bytes: binary content"
-            fields = next(csv.reader([line], delimiter=delimiter), [])
-            if len(fields) != len(header):
-                return f"{where} has {len(fields)} fields, the header {len(header)}"
-            for column, field_text in zip(header, fields, strict=True):
-                if field_text.strip() and not _looks_numeric(field_text):
-                    return f"{where}, column {column!r}: {field_text!r} is not a number"
-    return str(error).splitlines()[0]
-
-
-def _read_csv_numpy(path: Path, header: list[str], delimiter: str, max_values: int) -> dict[str, np.ndarray]:
-    # Every value takes at least two bytes ("0,"): a file too short to exceed the limit needs no count.
-    if path.stat().st_size // 2 > max_values:
-        with path.open("rb") as handle:
-            lines = sum(block.count(b"\n") for block in iter(lambda: handle.read(1 << 20), b""))
-        _check_values(lines * len(header), max_values, path, "its rows hold")
-    try:
-        table = np.loadtxt(path, delimiter=delimiter, skiprows=1, dtype=np.float64, ndmin=2, comments=None)
-    except ValueError as error:
-        raise ValueError(
-            f"{path}: unreadable CSV data ({_locate_bad_field(path, header, delimiter, error)})"
-        ) from None
-    if table.shape[0] == 0:
-        raise ValueError(f"{path}: the CSV file has a header but no data rows")
-    if table.shape[1] != len(header):
-        raise ValueError(f"{path}: {table.shape[1]} data columns but {len(header)} header names")
-    return {name: table[:, i] for i, name in enumerate(header)}
 
 
 def _column_roles(
@@ -671,28 +569,14 @@ def _column_roles(
     return time_name, columns.get("temperature"), columns.get("angle"), rate_names
 
 
-def _looks_numeric(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
-
-
-def _read_table(path: Path, max_values: int) -> dict[str, np.ndarray]:
-    """The columns of a CSV or NPZ file, by its extension."""
-    if not path.exists():
-        raise FileNotFoundError(f"{path}: no such file")
-    if path.is_dir():
-        raise ValueError(f"{path}: is a directory, not a recording file")
-    if path.stat().st_size == 0:
-        raise ValueError(f"{path}: empty file")
-    suffix = path.suffix.lower()
-    if suffix == ".npz":
-        return _read_npz(path, max_values)
-    if suffix in (".csv", ".txt"):
-        return _read_csv(path, max_values)
-    raise ValueError(f"{path}: unknown extension {path.suffix!r}; must be .csv or .npz")
+def _file_sample_rate(table: Mapping[str, Any], path: Path) -> float | None:
+    """The file's own ``fs`` entry (one positive number), if it has one."""
+    if "fs" not in table or np.size(table["fs"]) != 1:
+        return None
+    sample_rate = float(np.asarray(table["fs"]).reshape(()))
+    if not (math.isfinite(sample_rate) and sample_rate > 0):
+        raise ValueError(f"{path}: the 'fs' entry {sample_rate!r} is not a positive sample rate")
+    return sample_rate
 
 
 def load_recording(
@@ -704,13 +588,16 @@ def load_recording(
     irregular: str = "refuse",
     time_unit: str | None = None,
     max_values: int = MAX_VALUES,
+    delimiter: str = "auto",
+    resample: float | str | None = None,
 ) -> Recording:
-    """Read a CSV (with a header row) or NPZ recording; the file is opened read-only.
+    """Read a recording file; the file is opened read-only and never changed.
 
     Parameters
     ----------
     path : str or Path
-        A ``.csv`` (comma, semicolon or tab separated) or ``.npz`` file.
+        Text with a header row (``.csv``/``.txt``/``.tsv``), ``.npz``, HDF5 (``.h5``/``.hdf5``/``.hdf``,
+        the ``hdf5`` extra) or MATLAB ``.mat``; :mod:`carousel_theory.readers` names their columns.
     columns : mapping, optional
         Our name → the file's name. Keys ``"time"``, ``"temperature"`` and ``"angle"`` are special; every
         other key names a gyro column. Without it: the time is the column ``t``/``time``, temperature
@@ -724,19 +611,22 @@ def load_recording(
         What to do with gaps or non-uniform timestamps.
     time_unit : {"s", "ms", "us", "ns"}, optional
         Unit of a numeric time column (default s); see :func:`recording_from_arrays`.
+    resample : float or "auto", optional
+        Bin means on a uniform grid of this many Hz; see :func:`recording_from_arrays`.
     max_values : int
         Most values (all columns together) read into memory; an NPZ is refused from its headers, a CSV
         as soon as its rows exceed it (default ``MAX_VALUES``, 10⁹ values, 8 GB as float64).
+    delimiter : {"auto", "comma", "semicolon", "tab", "whitespace"}
+        The separator of a text file ("auto": read from the header row).
     """
     if not isinstance(path, (str, Path)):
         raise TypeError(f"path={path!r}: must be a str or pathlib.Path")
-    table = _read_table(Path(path), check_positive_integer("max_values", max_values))
+    _check_reading_options(irregular, time_unit, str(path))
+    table = read_table(Path(path), check_positive_integer("max_values", max_values), delimiter)
     path = Path(path)
     time_name, temperature_name, angle_name, rate_names = _column_roles(table, columns, path)
-    if sample_rate is None and "fs" in table and np.size(table["fs"]) == 1:
-        sample_rate = float(np.asarray(table["fs"]).reshape(()))
-        if not (math.isfinite(sample_rate) and sample_rate > 0):
-            raise ValueError(f"{path}: the 'fs' entry {sample_rate!r} is not a positive sample rate")
+    if sample_rate is None and resample is None:
+        sample_rate = _file_sample_rate(table, path)
     return recording_from_arrays(
         {ours: table[theirs] for ours, theirs in rate_names.items()},
         time=None if time_name is None else table[time_name],
@@ -747,4 +637,5 @@ def load_recording(
         source=str(path),
         irregular=irregular,
         time_unit=time_unit,
+        resample=resample,
     )

@@ -53,7 +53,7 @@ from carousel_theory._validation import (
     check_positive_integer,
     check_positive_real,
 )
-from carousel_theory.allan import AllanResult, allan_variance, with_model_intervals
+from carousel_theory.allan import AllanResult, allan_variance, check_tau_range, with_model_intervals
 from carousel_theory.noise_model import NoiseModel, term_allan_variance
 from carousel_theory.progress import progress
 from carousel_theory.tau_covariance import allan_estimate_covariance
@@ -312,8 +312,9 @@ class FitOptions:
         Largest AR order tried by Yule–Walker when "ar" is a component.
     ar_coefficients : tuple of float or None
         Fixed AR coefficients (then ``ar_order`` is ignored).
-    tau_range : (float, float) or None
-        Only τ in [low, high] s enter the fit (the short-τ cut-off above a sensor's filter).
+    tau_range : (float or None, float or None) or None
+        Only τ in [low, high] s enter the fit (the short-τ cut-off above a sensor's filter); None at
+        either end leaves it open.
     minimum_clusters : int
         Only τ with at least this many disjoint clusters in the record enter the fit.
     iterations : int
@@ -324,7 +325,7 @@ class FitOptions:
     flicker_d: float | None = None
     ar_order: int = 4
     ar_coefficients: tuple[float, ...] | None = None
-    tau_range: tuple[float, float] | None = None
+    tau_range: tuple[float | None, float | None] | None = None
     minimum_clusters: int = 3
     iterations: int = 3
 
@@ -341,12 +342,7 @@ class FitOptions:
         check_positive_integer("ar_order", self.ar_order)
         check_positive_integer("minimum_clusters", self.minimum_clusters, minimum=2)
         check_positive_integer("iterations", self.iterations)
-        if self.tau_range is not None:
-            if len(self.tau_range) != 2:
-                raise ValueError(f"tau_range={self.tau_range!r}: must be (low, high) in seconds")
-            low, high = (float(check_positive_real("tau_range", value)) for value in self.tau_range)
-            if not low <= high:
-                raise ValueError(f"tau_range={self.tau_range!r}: low must not exceed high")
+        check_tau_range(self.tau_range)  # an open end (None) is 0 or ∞
 
 
 # --- AR coefficients ---------------------------------------------------------------------------------
@@ -451,7 +447,7 @@ def _used_mask(observed: ObservedAllan, options: FitOptions) -> np.ndarray:
     sizes = np.asarray(allan.samples_per_cluster)
     used = observed.length // sizes >= options.minimum_clusters
     if options.tau_range is not None:
-        low, high = (float(value) for value in options.tau_range)
+        low, high = check_tau_range(options.tau_range)
         used &= (allan.tau >= low * (1 - 1e-12)) & (allan.tau <= high * (1 + 1e-12))
     parameter_count = len(options.components) + int(_fits_d(options))
     if used.sum() <= parameter_count:
@@ -627,7 +623,7 @@ def fit_noise_model(
     components: tuple[str, ...] = ("white", "rrw"),
     *,
     flicker_d: float | None = None,
-    tau_range: tuple[float, float] | None = None,
+    tau_range: tuple[float | None, float | None] | None = None,
     estimator: str = "overlapping",
     iterations: int = 3,
     confidence: float = 0.95,
@@ -647,8 +643,9 @@ def fit_noise_model(
         The processes in the model. The bias (record mean) is always estimated.
     flicker_d : float, optional
         Fix the 1/f order d; without it d is fitted (profile GLS) when "flicker" is a component.
-    tau_range : (float, float), optional
-        Only τ in [low, high] seconds enter the fit (e.g. to skip τ where internal filtering shows).
+    tau_range : (float or None, float or None), optional
+        Only τ in [low, high] seconds enter the fit (e.g. to skip τ where internal filtering shows);
+        either end may be None (open), e.g. ``(0.1, None)``.
     estimator : {"overlapping", "non-overlapping"}
         The Allan variance estimator fitted.
     iterations : int

@@ -284,7 +284,7 @@ _MODEL = NoiseModel(sample_rate=1.0, white_variance=1.0)
 
 INVALID = [
     ("y-nan", lambda: allan_variance([1.0, np.nan, 2.0, 3.0], 1.0), ValueError, "must be finite"),
-    ("y-2d", lambda: allan_variance(np.zeros((3, 3)), 1.0), ValueError, "1-dimensional"),
+    ("y-3d", lambda: allan_variance(np.zeros((3, 3, 3)), 1.0), ValueError, "1-dimensional"),
     ("y-short", lambda: allan_variance([1.0, 2.0], 1.0), ValueError, "at least 3 samples"),
     ("rate-zero", lambda: allan_variance(_Y, 0.0), ValueError, "sample_rate=0.0"),
     ("rate-string", lambda: allan_variance(_Y, "fast"), TypeError, "sample_rate='fast'"),

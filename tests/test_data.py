@@ -251,7 +251,21 @@ def test_adis16405_run_reads(shared_data):
 @pytest.mark.data
 def test_bursty_mpu6050_is_refused_or_kept(shared_data):
     path = shared_data / "mpu6050_static_10min" / "mpu6050_static_10min.npz"
-    with pytest.raises(ValueError, match="gap"):
+    with pytest.raises(ValueError, match=r"gap.*--resample HZ .*\(12\.4146 Hz is the highest f/2\^k"):
         load_recording(path)
     recording = load_recording(path, irregular="keep")
     assert not recording.uniform and recording.temperature is not None
+
+
+@pytest.mark.data
+def test_bursty_mpu6050_resampled_as_the_loop_reported_it(shared_data):
+    """docs/real_data_loop (written before resampling moved into the library) reports 12.41 Hz with 15
+    of 8134 bins empty; the library function must bin this recording the same way."""
+    path = shared_data / "mpu6050_static_10min" / "mpu6050_static_10min.npz"
+    before = _digest(path)
+    recording = load_recording(path, resample="auto")
+    assert _digest(path) == before
+    assert recording.uniform and len(recording) == 8134 and recording.temperature is not None
+    assert recording.notes[-1].endswith("uniform 12.41 Hz grid, 15 of 8134 bins empty and interpolated")
+    with pytest.raises(ValueError, match=r"no sample between t=649\.779 s and t=650\.276 s"):
+        load_recording(path, resample=25.0)

@@ -7,10 +7,12 @@ import hashlib
 from collections.abc import Sequence
 from pathlib import Path
 
+from carousel_theory.readers import SUFFIXES
+
 __all__ = ["RECORDING_SUFFIXES", "content_hash", "discover_recordings"]
 
 #: Extensions read as recordings (those of :func:`carousel_theory.data.load_recording`).
-RECORDING_SUFFIXES = (".csv", ".npz", ".txt")
+RECORDING_SUFFIXES = tuple(SUFFIXES)
 _HASH_BLOCK = 1 << 20
 
 

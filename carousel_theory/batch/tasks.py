@@ -63,6 +63,8 @@ class TaskOptions:
     schemes: tuple[str, ...] = ()
     time_unit: str | None = None
     max_values: int = MAX_VALUES
+    resample: float | str | None = None
+    delimiter: str = "auto"
 
     def fingerprint(self) -> str:
         """A stable text of the options: rows computed with other options are not reused."""
@@ -78,6 +80,8 @@ def _load(path: str, options: TaskOptions, irregular: str = "refuse") -> Any:
         irregular=irregular,
         time_unit=options.time_unit,
         max_values=options.max_values,
+        resample=options.resample,
+        delimiter=options.delimiter,
     )
 
 

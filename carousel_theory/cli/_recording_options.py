@@ -3,11 +3,32 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
-from carousel_theory.data import MAX_VALUES, TIME_UNITS
+from carousel_theory.data import DELIMITERS, MAX_VALUES, TIME_UNITS
 from carousel_theory.units import RATE_UNITS
 
-__all__ = ["add_reader_options", "add_recording_options", "column_mapping"]
+__all__ = [
+    "add_reader_options",
+    "add_recording_options",
+    "column_mapping",
+    "reader_keywords",
+    "reader_options_given",
+    "resample_rate",
+]
+
+
+def resample_rate(text: str) -> float | str:
+    """Parse one ``--resample`` value: a positive rate in Hz, or ``auto``."""
+    if text == "auto":
+        return text
+    try:
+        rate = float(text)
+    except ValueError:
+        rate = float("nan")
+    if not (rate > 0 and rate != float("inf")):
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a positive rate in Hz or 'auto'")
+    return rate
 
 
 def column_mapping(text: str) -> tuple[str, str]:
@@ -31,7 +52,8 @@ def add_recording_options(parser: argparse.ArgumentParser, column_help: str) -> 
 
 
 def add_reader_options(parser: argparse.ArgumentParser) -> None:
-    """``--time-unit`` and ``--max-values``, the options every command that reads a recording takes."""
+    """``--time-unit``, ``--max-values``, ``--resample`` and ``--delimiter``, the options every command
+    that reads a recording takes."""
     parser.add_argument(
         "--time-unit",
         choices=tuple(TIME_UNITS),
@@ -45,3 +67,36 @@ def add_reader_options(parser: argparse.ArgumentParser) -> None:
         help=f"refuse a file of more values, all columns together (default {MAX_VALUES:.0e}, "
         "8 GB as float64)",
     )
+    parser.add_argument(
+        "--resample",
+        type=resample_rate,
+        metavar="HZ",
+        help="average irregularly timed samples onto a uniform grid of HZ (bin means; 'auto': the highest "
+        "mean rate / 2^k whose empty bins can be bridged); gaps are refused with their time",
+    )
+    parser.add_argument(
+        "--delimiter",
+        choices=("auto", *DELIMITERS),
+        default="auto",
+        help="separator of a text file (default auto: read from the header row)",
+    )
+
+
+def reader_keywords(args: argparse.Namespace) -> dict[str, Any]:
+    """The keywords of :func:`carousel_theory.data.load_recording` that :func:`add_reader_options` sets."""
+    return {
+        "time_unit": args.time_unit,
+        "max_values": args.max_values,
+        "resample": args.resample,
+        "delimiter": args.delimiter,
+    }
+
+
+def reader_options_given(args: argparse.Namespace) -> list[str]:
+    """The options of :func:`add_reader_options` given with other than their default values."""
+    defaults = {"time_unit": None, "max_values": MAX_VALUES, "resample": None, "delimiter": "auto"}
+    return [
+        f"--{name.replace('_', '-')}"
+        for name, value in reader_keywords(args).items()
+        if value != defaults[name]
+    ]

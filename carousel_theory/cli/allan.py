@@ -12,7 +12,7 @@ import numpy as np
 from carousel_theory.allan import ESTIMATORS, NOISE_TYPES, AllanResult, allan_variance
 from carousel_theory.cli._fit_output import allan_record
 from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
-from carousel_theory.cli._recording_options import add_recording_options
+from carousel_theory.cli._recording_options import add_recording_options, reader_keywords
 from carousel_theory.data import Recording, load_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import atomic_output, plan_outputs
@@ -39,14 +39,16 @@ def read_recording(path: Path, args: argparse.Namespace) -> Recording:
     """Load DATA with the shared options; irregular timing is refused (the Allan variance needs a uniform
     sample rate)."""
     columns = dict(args.column) if args.column else None
-    return load_recording(
+    recording = load_recording(
         path,
         columns=columns,
         sample_rate=args.sample_rate,
         units=args.units,
-        time_unit=args.time_unit,
-        max_values=args.max_values,
+        **reader_keywords(args),
     )
+    for note in recording.notes:  # what --resample did, on stderr: stdout may be JSON
+        print(f"note: {note}", file=sys.stderr)
+    return recording
 
 
 def _taus(text: str) -> Any:

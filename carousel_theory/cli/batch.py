@@ -101,6 +101,8 @@ def _options(args: argparse.Namespace) -> TaskOptions:
         sample_rate=args.sample_rate,
         time_unit=args.time_unit,
         max_values=args.max_values,
+        resample=args.resample,
+        delimiter=args.delimiter,
         estimator=args.estimator,
         model=args.model,
         flicker_d=args.flicker_d,

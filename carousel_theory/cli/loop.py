@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
-from carousel_theory.cli._recording_options import add_recording_options
+from carousel_theory.cli._recording_options import add_recording_options, reader_keywords
 from carousel_theory.closed_loop import DEFAULT_ALPHA, run_loop, write_report
 from carousel_theory.closed_loop.report import REPORT_FILES
 from carousel_theory.data import load_recording
@@ -143,8 +143,7 @@ def run(args: argparse.Namespace) -> int:
         sample_rate=args.sample_rate,
         units=args.units,
         irregular="keep",
-        time_unit=args.time_unit,
-        max_values=args.max_values,
+        **reader_keywords(args),
     )
     result = run_loop(
         recording, samples_per_revolution=args.samples_per_revolution, axes=axes, alpha=args.alpha

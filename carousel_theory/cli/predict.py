@@ -16,8 +16,7 @@ import numpy as np
 from carousel_theory._validation import check_fractional_order, check_positive_integer, check_positive_real
 from carousel_theory.cli._files import write_or_compare
 from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
-from carousel_theory.cli._recording_options import add_reader_options
-from carousel_theory.data import MAX_VALUES
+from carousel_theory.cli._recording_options import add_reader_options, reader_keywords, reader_options_given
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import atomic_output, plan_outputs, write_text_atomic
 
@@ -88,8 +87,8 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(
                 f"DATA={str(args.data)!r}: not used with --table1 (use --data DIR for measured data)"
             )
-        if args.time_unit is not None or args.max_values != MAX_VALUES:
-            raise ValueError("--time-unit, --max-values: apply to DATA, not to --table1")
+        if given := reader_options_given(args):
+            raise ValueError(f"{', '.join(given)}: apply to DATA, not to --table1")
         if args.output_units != "rad/s":
             raise ValueError(
                 f"--output-units={args.output_units!r}: applies to a DATA forecast; Table I reports the "
@@ -128,7 +127,9 @@ def _run_recording(args: argparse.Namespace) -> int:
 
     calibration_length, horizon = _check_recording_options(args)
     plan_outputs([(args.output, "file")], inputs=[args.data])
-    recording = load_recording(args.data, time_unit=args.time_unit, max_values=args.max_values)
+    recording = load_recording(args.data, **reader_keywords(args))
+    for note in recording.notes:  # what --resample did
+        print(f"note: {note}")
     axis = args.axis or next(iter(recording.rates))
     if axis not in recording.rates:
         raise ValueError(f"--axis={axis!r}: not in the recording (have {sorted(recording.rates)})")
