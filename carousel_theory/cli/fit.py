@@ -6,15 +6,19 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import textwrap
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording, result_as_json
+from carousel_theory.cli.allan import add_recording_arguments, read_recording, result_as_json
+from carousel_theory.data import Recording
+from carousel_theory.fit_diagnostics import FitNotice, fit_notices
 from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
+from carousel_theory.plots import plot_fit, short_title
 from carousel_theory.units import BIAS_INSTABILITY_FACTOR, bias_instability_from_allan_minimum
 
 #: Rows of the Table III-style summary: (key, label, unit, source of the value).
@@ -23,6 +27,16 @@ PAPER_ROWS = (
     ("rrw_variance_per_s", "σ_q²", "(rad/s)²/s"),
     ("bias_instability", "bias instability (model min σ_A / 0.664)", "rad/s"),
 )
+#: The default model: white noise, rate random walk and 1/f noise (order d fitted), chosen because the
+#: shared ADIS16405 and MPU6050 recordings reject white + RRW alone at every cut-off tried and accept this
+#: one above 1 s (benchmarks/fit_default_model.py).
+DEFAULT_MODEL = ("white", "rrw", "flicker")
+#: The default short-τ cut-off (s): above the internal filters of common MEMS gyros (their bandwidths
+#: are tens of Hz), where the samples stop being correlated and white noise follows its −1/2 slope.
+DEFAULT_TAU_MIN = 1.0
+#: Octave τ a recording must leave at or above DEFAULT_TAU_MIN for the default cut-off to be applied.
+DEFAULT_TAU_MIN_OCTAVES = 6
+
 FIELD_ROWS = (
     ("angle_random_walk_deg_per_sqrt_h", "angle random walk", "°/√h"),
     ("rate_random_walk_deg_per_h_per_sqrt_h", "rate random walk", "°/h/√h"),
@@ -58,15 +72,19 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--model",
         type=_components,
-        default=("white", "rrw"),
+        default=DEFAULT_MODEL,
         metavar="C[,C...]",
-        help=f"components from {', '.join(COMPONENTS)} (default white,rrw)",
+        help=f"components from {', '.join(COMPONENTS)} (default {','.join(DEFAULT_MODEL)})",
     )
     parser.add_argument(
         "--flicker-d", type=float, help="fix the 1/f order d (default: fitted when flicker is used)"
     )
     parser.add_argument(
-        "--tau-min", type=float, help="smallest τ (s) in the fit (e.g. above the sensor's filter)"
+        "--tau-min",
+        type=float,
+        help=f"smallest τ (s) in the fit, above the sensor's internal filter (default {DEFAULT_TAU_MIN:g} s "
+        f"when the recording leaves {DEFAULT_TAU_MIN_OCTAVES} octave τ above it; give one sample period, "
+        "e.g. 0.01 at 100 Hz, to fit every τ)",
     )
     parser.add_argument("--tau-max", type=float, help="largest τ (s) in the fit")
     parser.add_argument("--iterations", type=int, default=3, help="covariance re-evaluations (default 3)")
@@ -76,19 +94,38 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(handler=run)
 
 
-def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitResult]]:
+def default_tau_min(recording: Recording) -> tuple[float | None, str | None]:
+    """The cut-off ``fit`` uses without --tau-min, and a note when the default cannot be applied.
+
+    :data:`DEFAULT_TAU_MIN` when at least :data:`DEFAULT_TAU_MIN_OCTAVES` octave τ ≥ it hold 3 disjoint
+    clusters of the recording; otherwise no cut-off (every τ is fitted) and a sentence saying so.
+    """
+    sizes = 2 ** np.arange(64)
+    sizes = sizes[(sizes <= len(recording) // 3) & (sizes >= DEFAULT_TAU_MIN * recording.sample_rate)]
+    if len(sizes) >= DEFAULT_TAU_MIN_OCTAVES:
+        return DEFAULT_TAU_MIN, None
+    return None, (
+        f"the default short-τ cut-off ({DEFAULT_TAU_MIN:g} s) is not applied: the recording "
+        f"({recording.duration:.4g} s) leaves only {len(sizes)} octave τ above it (needs "
+        f"{DEFAULT_TAU_MIN_OCTAVES}), so every τ is fitted and an internal filter can bend the short-τ end"
+    )
+
+
+def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitResult], list[str]]:
+    """Read and fit one recording; the notes say how the default cut-off was applied."""
     recording = read_recording(path, args)
+    tau_min, note = (args.tau_min, None) if args.tau_min is not None else default_tau_min(recording)
     fits = fit_recording(
         recording,
         args.model,
-        tau_min=args.tau_min,
+        tau_min=tau_min,
         tau_max=args.tau_max,
         label=f"fit {path.name}: axes",
         flicker_d=args.flicker_d,
         estimator=args.estimator,
         iterations=args.iterations,
     )
-    return recording, fits
+    return recording, fits, [note] if note else []
 
 
 def _measured_bias_instability(fit: FitResult) -> tuple[float, float, float, float]:
@@ -248,22 +285,10 @@ def _data_rows(fits: dict[str, FitResult], axes: list[str]) -> list[str]:
 
 
 def _verdict_lines(fits: dict[str, FitResult], axes: list[str]) -> list[str]:
-    """Parameters at a bound, and the axes whose χ² says the model misfits (p < 0.01)."""
-    bounds = [f"{a}: {', '.join(fits[a].at_bound)}" for a in axes if fits[a].at_bound]
-    lines = ["", f"Parameters held at zero: {'; '.join(bounds)}." if bounds else "No parameter at a bound."]
-    misfits = [
-        f"{a} (p = {fits[a].p_value:.2g}; scale its standard errors by about "
-        f"{math.sqrt(fits[a].chi_square / fits[a].degrees_of_freedom):.2g})"
-        for a in axes
-        if fits[a].p_value < 0.01
-    ]
-    if misfits:
-        lines.append(
-            "The model does not explain every τ within the Allan variance's own uncertainty for "
-            + ", ".join(misfits)
-            + ": the standard errors above assume the model and are too small there."
-        )
-    return [*lines, ""]
+    """The notices of each axis (:func:`carousel_theory.fit_diagnostics.fit_notices`): model rejected,
+    terms held at zero with their likely cause, the ARW read-off."""
+    lines = [f"- {axis}: {notice.message}" for axis in axes for notice in fit_notices(fits[axis])]
+    return ["", *(lines or ["No notice: every axis accepts the model and no term is held at zero."]), ""]
 
 
 def _consistency_section(files: list[tuple[Any, dict[str, FitResult]]], axes: list[str]) -> list[str]:
@@ -304,18 +329,25 @@ def _missing_axes_note(files: list[tuple[Any, dict[str, FitResult]]], axes: list
     )
 
 
-def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argparse.Namespace) -> str:
-    """The Table III-style report: one table per recording and a run-to-run consistency table."""
+def markdown_report(
+    files: list[tuple[Any, dict[str, FitResult]]],
+    args: argparse.Namespace,
+    notes: list[list[str]] | None = None,
+) -> str:
+    """The Table III-style report: one table per recording and a run-to-run consistency table; ``notes``
+    (one list per recording) are printed under its heading."""
     lines = _report_header(files, args)
+    notes = notes or [[] for _ in files]
     axes = list(
         dict.fromkeys(name for _, fits in files for name in fits)
     )  # every axis of every run, in order
-    for recording, fits in files:
+    for (recording, fits), file_notes in zip(files, notes, strict=True):
         lines += [
             f"## {Path(recording.source).name}",
             "",
             f"{len(recording)} samples at {recording.sample_rate:g} Hz ({recording.duration / 3600:.3g} h).",
             "",
+            *(f"Note: {note}.\n" for note in file_notes),
             "| parameter | unit | " + " | ".join(fits) + " |",
             "|---|---|" + "---|" * len(fits),
         ]
@@ -340,46 +372,78 @@ def _check_fit_options(args: argparse.Namespace) -> None:
         )
 
 
+#: The printed keys that come from each fitted variance (shown as held at zero when it is).
+_DERIVED_KEYS = {
+    "white_variance": ("white_variance_at_1s", "angle_random_walk_deg_per_sqrt_h"),
+    "rrw_variance": ("rrw_variance_per_s", "rate_random_walk_deg_per_h_per_sqrt_h"),
+}
+
+
+def _notice_lines(notices: list[FitNotice], indent: str) -> list[str]:
+    """Each notice wrapped at 110 columns under a ``note:`` or ``WARNING:`` tag."""
+    lines = []
+    for notice in notices:
+        tag = "WARNING: " if notice.kind == "model_rejected" else "note: "
+        lines += textwrap.wrap(
+            tag + notice.message, width=110, initial_indent=indent, subsequent_indent=indent + "  "
+        )
+    return lines
+
+
+def _print_fit(name: str, fit: FitResult) -> None:
+    """One axis on stdout: method and χ², the values (terms held at zero said so), the notices."""
+    print(f"  {name}: {fit.method}; χ² = {fit.chi_square:.3g} on {fit.degrees_of_freedom} degrees of freedom")
+    held = {key for parameter in fit.at_bound for key in _DERIVED_KEYS.get(parameter, ())}
+    for key, value in {**fit.paper_units(), **fit.field_units()}.items():
+        shown = "0 (held at zero: no standard error)" if key in held else _format(*value)
+        print(f"    {key:40s} {shown}")
+    for line in _notice_lines(fit_notices(fit), "    "):
+        print(line)
+
+
+def _json_document(files: list[tuple[Any, dict[str, FitResult]]], notes: list[list[str]]) -> dict[str, Any]:
+    """The ``fit --json`` body: per file its source, notes, and per column the fit with its notices."""
+    return {
+        "files": [
+            {
+                "source": recording.source,
+                "notes": file_notes,
+                "columns": {
+                    name: {
+                        **fit_as_json(fit),
+                        "notices": [{"kind": n.kind, "message": n.message} for n in fit_notices(fit)],
+                    }
+                    for name, fit in fits.items()
+                },
+            }
+            for (recording, fits), file_notes in zip(files, notes, strict=True)
+        ]
+    }
+
+
 def run(args: argparse.Namespace) -> int:
     if args.iterations < 1:
         raise ValueError(f"--iterations={args.iterations!r}: must be >= 1")
     _check_fit_options(args)
     plan_outputs([(args.plot, "file"), (args.markdown, "file")], inputs=args.data)
-    files = [_fit_file(path, args) for path in args.data]
+    fitted = [_fit_file(path, args) for path in args.data]
+    files = [(recording, fits) for recording, fits, _ in fitted]
+    notes = [file_notes for _, _, file_notes in fitted]
     if args.plot:
         recording, fits = files[0]
-        models = {name: (fit.allan.tau, fit.model_avar) for name, fit in fits.items()}
-        plot_allan(
-            args.plot,
-            {name: fit.allan for name, fit in fits.items()},
-            f"{Path(recording.source).name}: Allan deviation and fitted {'+'.join(args.model)} model",
-            models,
-        )
+        title = short_title(recording.source, f"Allan deviation and the fitted {'+'.join(args.model)} model")
+        plot_fit(args.plot, fits, title)
     if args.markdown:
-        write_text_atomic(args.markdown, markdown_report(files, args))
+        write_text_atomic(args.markdown, markdown_report(files, args, notes))
     if args.json:
-        document = {
-            "files": [
-                {
-                    "source": recording.source,
-                    "columns": {name: fit_as_json(fit) for name, fit in fits.items()},
-                }
-                for recording, fits in files
-            ]
-        }
-        sys.stdout.write(strict_json(json_document("fit", document, FIT_NULL_REASONS)))
+        sys.stdout.write(strict_json(json_document("fit", _json_document(files, notes), FIT_NULL_REASONS)))
         return 0
-    for recording, fits in files:
+    for (recording, fits), file_notes in zip(files, notes, strict=True):
         print(f"{recording.source}: {len(recording)} samples at {recording.sample_rate:g} Hz")
+        for line in _notice_lines([FitNotice("default_cut_off", note) for note in file_notes], "  "):
+            print(line)
         for name, fit in fits.items():
-            print(
-                f"  {name}: {fit.method}; χ² = {fit.chi_square:.3g} on {fit.degrees_of_freedom} "
-                "degrees of freedom"
-            )
-            for key, value in {**fit.paper_units(), **fit.field_units()}.items():
-                print(f"    {key:40s} {_format(*value)}")
-            if fit.at_bound:
-                print(f"    held at zero: {', '.join(fit.at_bound)}")
+            _print_fit(name, fit)
     for path in (args.plot, args.markdown):
         if path:
             print(f"wrote {path}")
