@@ -141,12 +141,18 @@ def read_off_notice(fit: FitResult) -> FitNotice | None:
     if abs(read - fitted) <= READ_OFF_TOLERANCE * fitted:
         return None
     first = float(fit.allan.tau[fit.used][0])
+    advice = (
+        f"fitting from τ = {first:.3g} s lets the bent short-τ end pull the white-noise level; fit above the "
+        "filter (--tau-min 1) to read it where the slope is −1/2"
+        if first < 1.0
+        else f"the fit separates the white noise from the other terms over τ ≥ {first:.3g} s"
+    )
     return FitNotice(
         "angle_random_walk_read_off",
         f"the angle random walk of the fit, {fitted:.3g} °/√h, differs from the textbook read-off "
         f"σ_A(τ)·√τ at τ = {tau:.3g} s, {read:.3g} °/√h: the read-off counts every term at that τ and "
-        "assumes the white-noise slope −1/2 holds there, while the sensor's internal filter bends the "
-        f"short-τ end of the curve; the fit separates the white noise over τ ≥ {first:.3g} s.",
+        "assumes the white-noise slope −1/2 holds there, while a sensor's internal filter bends the "
+        f"short-τ end of the curve; {advice}.",
     )
 
 

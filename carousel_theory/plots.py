@@ -8,7 +8,7 @@ converted with :func:`carousel_theory.units.from_rad_per_s` only for drawing.
 What a reader needs from an Allan deviation plot, and how it is drawn here:
 
 - several axes on one plot are told apart by marker as well as colour, and each axis's points are
-  shifted by a small constant factor in τ (:func:`tau_offsets`, a few per cent) so that error bars at the
+  shifted by a small constant factor in τ (:func:`tau_offsets`, 8 % between neighbours) so that error bars at the
   same τ do not hide each other;
 - the title names the recording by its file stem (:func:`short_title`), not by its full path;
 - the legend sits outside the axes, where it cannot cover data;
@@ -51,8 +51,8 @@ __all__ = [
 UNIT_LABELS = {"rad/s": "rad/s", "deg/s": "°/s", "deg/h": "°/h"}
 #: Marker of the k-th axis of a recording (with colour C<k>).
 MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*")
-#: Ratio between neighbouring axes' τ positions (2.5 % apart; octave τ are 100 % apart).
-TAU_OFFSET_STEP = 1.025
+#: Ratio between neighbouring axes' τ positions (8 % apart; octave τ are 100 % apart).
+TAU_OFFSET_STEP = 1.08
 #: Where a legend outside the axes is anchored: right of the plotting area, at its top.
 OUTSIDE_RIGHT = {"loc": "upper left", "bbox_to_anchor": (1.02, 1.0), "borderaxespad": 0.0}
 
