@@ -125,3 +125,56 @@ def test_binary_file_named_csv_and_unknown_component(tmp_path, capsys):
         main(["fit", str(path), "--model", "white,pink"])
     assert stop.value.code == 2
     assert "must be comma-separated names" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def filtered_npz(tmp_path_factory) -> Path:
+    """1000 s at 100 Hz of white noise through a 4-sample moving average plus 1/f noise."""
+    from test_fit_diagnostics import filtered_sensor
+
+    from carousel_theory.data import recording_from_arrays
+    from carousel_theory.simulate import write_recording
+
+    path = tmp_path_factory.mktemp("filtered") / "filtered.npz"
+    return write_recording(recording_from_arrays({"wx": filtered_sensor()}, sample_rate=100.0), path)
+
+
+def _words(text: str) -> str:
+    return " ".join(text.split())  # the notices are wrapped at 110 columns
+
+
+def test_issue12_fit_says_on_stdout_when_its_model_is_rejected(filtered_npz, capsys):
+    assert main(["fit", str(filtered_npz), "--model", "white,rrw", "--tau-min", "0.01"]) == 0
+    out = _words(capsys.readouterr().out)
+    assert "WARNING: the model is rejected by its own χ² test" in out
+    assert "standard error above assumes a model that does not hold and is too small" in out
+    assert "--tau-min 1" in out and "'flicker'" in out and "carousel-theory loop" in out
+    assert "differs from the textbook read-off σ_A(τ)·√τ at τ = 1.28 s" in out
+
+
+def test_issue12_default_model_is_white_rrw_flicker_above_one_second(filtered_npz, capsys):
+    assert main(["fit", str(filtered_npz)]) == 0
+    out = capsys.readouterr().out
+    assert "(1.28 s … " in out and "1/f order d profiled" in out
+    assert "WARNING" not in out  # the default model is not rejected on this sensor-like recording
+
+
+def test_issue12_default_cut_off_is_said_when_the_recording_is_too_short(recording_csv, capsys):
+    assert main(["fit", str(recording_csv)]) == 0
+    out = _words(capsys.readouterr().out)
+    assert "the default short-τ cut-off (1 s) is not applied" in out and "(0.02 s … " in out
+
+
+def test_issue13_fit_term_at_bound_is_reported_everywhere(filtered_npz, capsys, tmp_path):
+    argv = ["fit", str(filtered_npz), "--model", "white,rrw,flicker", "--tau-min", "0.01"]
+    report = tmp_path / "r.md"
+    assert main([*argv, "--markdown", str(report)]) == 0
+    out = capsys.readouterr().out
+    assert "angle_random_walk_deg_per_sqrt_h         0 (held at zero: no standard error)" in out
+    assert "white_variance is held at zero" in _words(out) and "nan" not in out.lower()
+    assert "white_variance is held at zero" in report.read_text(encoding="utf-8")
+    assert main([*argv, "--json"]) == 0
+    column = json.loads(capsys.readouterr().out)["files"][0]["columns"]["wx"]
+    kinds = [notice["kind"] for notice in column["notices"]]
+    assert "term_at_bound" in kinds and "model_rejected" in kinds
+    assert column["at_bound"][0] == "white_variance"
