@@ -3,7 +3,8 @@ recordings.
 
 Usage: ``python benchmarks/fit_default_model.py [DATA_DIR] [--candidates NAME ...]``
 
-Every candidate (components and a short-τ cut-off ``tau_min`` in s, or none) is fitted with
+Every candidate (components and a short-τ cut-off ``tau_min`` in s, none, or the default range of
+:func:`carousel_theory.fit_defaults.fit_with_default_range`) is fitted with
 :func:`carousel_theory.fitting.fit_recording` to every gyro axis of every static recording under DATA_DIR
 (default ``../shared/data``): the ADIS16405 runs (100 Hz, uniform) and the MPU6050 static run (bursty
 timestamps, bin-averaged onto a uniform grid by :func:`carousel_theory.closed_loop.resample.uniform_resample`
@@ -20,19 +21,25 @@ from pathlib import Path
 
 from carousel_theory.closed_loop.resample import uniform_resample
 from carousel_theory.data import Recording, load_recording
+from carousel_theory.fit_defaults import fit_with_default_range
 from carousel_theory.fitting import fit_recording
 
-CANDIDATES: dict[str, tuple[tuple[str, ...], float | None]] = {
-    "white,rrw": (("white", "rrw"), None),
-    "white,rrw τ≥0.1": (("white", "rrw"), 0.1),
-    "white,rrw τ≥1": (("white", "rrw"), 1.0),
-    "white,rrw,flicker": (("white", "rrw", "flicker"), None),
-    "white,rrw,flicker τ≥0.1": (("white", "rrw", "flicker"), 0.1),
-    "white,rrw,flicker τ≥0.3": (("white", "rrw", "flicker"), 0.3),
-    "white,rrw,flicker τ≥1": (("white", "rrw", "flicker"), 1.0),
-    "ar,rrw,flicker": (("ar", "rrw", "flicker"), None),
-    "ar,rrw": (("ar", "rrw"), None),
-    "ar,rrw,flicker τ≥0.1": (("ar", "rrw", "flicker"), 0.1),
+#: Name: (components, tau_min in s or None for every τ or -1 for the default range, fixed 1/f order d).
+CANDIDATES: dict[str, tuple[tuple[str, ...], float | None, float | None]] = {
+    "white,rrw": (("white", "rrw"), None, None),
+    "white,rrw τ≥0.1": (("white", "rrw"), 0.1, None),
+    "white,rrw τ≥1": (("white", "rrw"), 1.0, None),
+    "white,rrw,flicker": (("white", "rrw", "flicker"), None, None),
+    "white,rrw,flicker τ≥0.1": (("white", "rrw", "flicker"), 0.1, None),
+    "white,rrw,flicker τ≥0.3": (("white", "rrw", "flicker"), 0.3, None),
+    "white,rrw,flicker τ≥1": (("white", "rrw", "flicker"), 1.0, None),
+    "white,rrw,flicker, every τ or τ≥1 if rejected (default)": (("white", "rrw", "flicker"), -1.0, None),
+    "ar,rrw,flicker": (("ar", "rrw", "flicker"), None, None),
+    "ar,rrw": (("ar", "rrw"), None, None),
+    "ar,rrw,flicker τ≥0.1": (("ar", "rrw", "flicker"), 0.1, None),
+    "white,rrw,flicker d=0.5": (("white", "rrw", "flicker"), None, 0.5),
+    "white,rrw,flicker d=0.5 τ≥1": (("white", "rrw", "flicker"), 1.0, 0.5),
+    "white,rrw,flicker d=0.5, default range": (("white", "rrw", "flicker"), -1.0, 0.5),
 }
 
 
@@ -50,14 +57,23 @@ def main() -> None:
     parser.add_argument("--candidates", nargs="*", default=list(CANDIDATES), choices=list(CANDIDATES))
     args = parser.parse_args()
     loaded = recordings(args.data)
-    print("| candidate | " + " | ".join(Path(r.source).stem for r in loaded) + " | axes rejected | at zero | s |")
+    print(
+        "| candidate | "
+        + " | ".join(Path(r.source).stem for r in loaded)
+        + " | axes rejected | at zero | s |"
+    )
     print("|---|" + "---|" * (len(loaded) + 3))
     for name in args.candidates:
-        components, tau_min = CANDIDATES[name]
+        components, tau_min, flicker_d = CANDIDATES[name]
         start, cells, rejected, at_zero, total = time.perf_counter(), [], 0, 0, 0
         for recording in loaded:
             try:
-                fits = fit_recording(recording, components, tau_min=tau_min, iterations=3)
+                if tau_min == -1.0:  # the default range of carousel_theory.fit_defaults
+                    fits, _ = fit_with_default_range(recording, components, iterations=3, flicker_d=flicker_d)
+                else:
+                    fits = fit_recording(
+                        recording, components, tau_min=tau_min, iterations=3, flicker_d=flicker_d
+                    )
             except ValueError as error:  # reported in the table, e.g. an AR order of 0
                 cells.append(f"error: {str(error)[:60]}")
                 continue
@@ -70,7 +86,10 @@ def main() -> None:
             at_zero += sum(len(fit.at_bound) for fit in fits.values())
             total += len(fits)
         seconds = time.perf_counter() - start
-        print(f"| {name} | " + " | ".join(cells) + f" | {rejected}/{total} | {at_zero} | {seconds:.0f} |", flush=True)
+        print(
+            f"| {name} | " + " | ".join(cells) + f" | {rejected}/{total} | {at_zero} | {seconds:.0f} |",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

@@ -15,8 +15,9 @@ user reads beside the numbers (``fit`` prints them on stdout and writes them int
 ``angle_random_walk_read_off``
     The textbook read-off of the angle random walk, σ_A(τ)·√τ at the octave τ nearest 1 s (IEEE Std
     952-1997 Annex C: the −1/2 line at τ = 1 s), differs from the fitted white noise by more than
-    :data:`READ_OFF_TOLERANCE`: the read-off also counts every other term at that τ, and an internal
-    filter bends the short-τ end of the curve below the −1/2 line.
+    :data:`READ_OFF_TOLERANCE` and by more than the Allan variance's own interval at that τ: the
+    read-off also counts every other term at that τ, and an internal filter bends the short-τ end of the
+    curve below the −1/2 line.
 """
 
 from __future__ import annotations
@@ -123,22 +124,28 @@ def bound_notices(fit: FitResult) -> list[FitNotice]:
     return notices
 
 
-def angle_random_walk_read_off(fit: FitResult) -> tuple[float, float]:
-    """(τ, σ_A(τ)·√τ in °/√h) at the octave τ of the data nearest 1 s (IEEE Std 952 Annex C read-off)."""
+def angle_random_walk_read_off(fit: FitResult) -> tuple[float, float, float, float]:
+    """(τ, σ_A(τ)·√τ, its interval low, high) in °/√h at the octave τ of the data nearest 1 s (IEEE Std 952
+    Annex C read-off); the interval is the Allan variance's own at that τ."""
     tau = np.asarray(fit.allan.tau)
     nearest = int(np.argmin(np.abs(np.log(tau))))
-    value = math.sqrt(float(fit.allan.avar[nearest]) * float(tau[nearest]))
-    return float(tau[nearest]), to_deg_per_sqrt_hour(value)
+    at = float(tau[nearest])
+    low, value, high = (
+        to_deg_per_sqrt_hour(math.sqrt(float(array[nearest]) * at))
+        for array in (fit.allan.ci_low, fit.allan.avar, fit.allan.ci_high)
+    )
+    return at, value, low, high
 
 
 def read_off_notice(fit: FitResult) -> FitNotice | None:
-    """The ``angle_random_walk_read_off`` notice when the fitted ARW and the 1-s read-off differ by more
-    than :data:`READ_OFF_TOLERANCE` (relative); None without a fitted white-noise term."""
+    """The ``angle_random_walk_read_off`` notice when the fitted ARW lies outside the read-off's interval
+    and differs from it by more than :data:`READ_OFF_TOLERANCE` (relative); None without a fitted
+    white-noise term."""
     if "white_variance" not in fit.parameters or fit.model.white_variance <= 0:
         return None
     fitted = fit.model.angle_random_walk_deg_per_sqrt_hour()
-    tau, read = angle_random_walk_read_off(fit)
-    if abs(read - fitted) <= READ_OFF_TOLERANCE * fitted:
+    tau, read, low, high = angle_random_walk_read_off(fit)
+    if low <= fitted <= high or abs(read - fitted) <= READ_OFF_TOLERANCE * fitted:
         return None
     first = float(fit.allan.tau[fit.used][0])
     advice = (

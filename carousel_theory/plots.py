@@ -8,8 +8,8 @@ converted with :func:`carousel_theory.units.from_rad_per_s` only for drawing.
 What a reader needs from an Allan deviation plot, and how it is drawn here:
 
 - several axes on one plot are told apart by marker as well as colour, and each axis's points are
-  shifted by a small constant factor in τ (:func:`tau_offsets`, 8 % between neighbours) so that error bars at the
-  same τ do not hide each other;
+  shifted by a small constant factor in τ (:func:`tau_offsets`, 8 % between neighbours) so that error
+  bars at the same τ do not hide each other (the x label says so);
 - the title names the recording by its file stem (:func:`short_title`), not by its full path;
 - the legend sits outside the axes, where it cannot cover data;
 - a fitted model is drawn with the τ range that entered the fit (shaded), each fitted component's own
@@ -149,6 +149,10 @@ def allan_figure(results: Mapping[str, AllanResult], title: str, *, output_units
         label = f"{name} ({result.estimator}, {100 * result.confidence:g} % interval)"
         _draw_deviation(plot, result, output_units, index, float(offset), label)
     _log_axes(plot, output_units)
+    if len(results) > 1:
+        plot.set_xlabel(
+            f"averaging time τ (s); columns shifted by ×{TAU_OFFSET_STEP:g} in τ to separate their bars"
+        )
     plot.set_title(title, fontsize=10)
     plot.legend(fontsize=8, **OUTSIDE_RIGHT)
     return figure

@@ -159,10 +159,24 @@ def test_issue12_default_model_is_white_rrw_flicker_above_one_second(filtered_np
     assert "WARNING" not in out  # the default model is not rejected on this sensor-like recording
 
 
-def test_issue12_default_cut_off_is_said_when_the_recording_is_too_short(recording_csv, capsys):
-    assert main(["fit", str(recording_csv)]) == 0
+def test_issue12_default_range_is_said_when_the_recording_is_too_short_to_refit(tmp_path, capsys):
+    from test_fit_diagnostics import filtered_sensor
+
+    from carousel_theory.data import recording_from_arrays
+    from carousel_theory.simulate import write_recording
+
+    short = recording_from_arrays({"wx": filtered_sensor(10_000)}, sample_rate=100.0)
+    path = write_recording(short, tmp_path / "short.npz")
+    assert main(["fit", str(path)]) == 0
     out = _words(capsys.readouterr().out)
-    assert "the default short-τ cut-off (1 s) is not applied" in out and "(0.02 s … " in out
+    assert "wx: the model is rejected over every τ, and the recording (100 s) leaves only 5 octave τ" in out
+    assert "(0.01 s … " in out and "WARNING: the model is rejected" in out
+
+
+def test_white_noise_gives_no_notice_by_default(recording_csv, capsys):
+    assert main(["fit", str(recording_csv)]) == 0
+    out = capsys.readouterr().out
+    assert "(0.02 s … " in out and "WARNING" not in out and "read-off" not in out
 
 
 def test_issue13_fit_term_at_bound_is_reported_everywhere(filtered_npz, capsys, tmp_path):

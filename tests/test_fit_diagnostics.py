@@ -62,20 +62,21 @@ def test_rejected_model_says_what_it_means_and_what_to_try(white_rrw_all_tau):
 
 
 def test_arw_read_off_at_the_octave_tau_nearest_one_second(sensor, white_rrw_all_tau):
-    tau, value = angle_random_walk_read_off(white_rrw_all_tau)
+    tau, value, low, high = angle_random_walk_read_off(white_rrw_all_tau)
     assert tau == 1.28  # 128 samples at 100 Hz: the octave τ nearest 1 s
     m = 128  # the overlapping Allan variance at m, written out
     angle = np.concatenate(([0.0], np.cumsum(sensor))) / RATE
     avar = np.mean((angle[2 * m :] - 2 * angle[m:-m] + angle[: -2 * m]) ** 2) / (2 * tau**2)
     assert value == pytest.approx(math.sqrt(avar * tau) * 180 / math.pi * 60, rel=1e-9)
+    assert low < value < high
 
 
 def test_arw_read_off_notice_when_the_filter_bends_the_short_tau_end(white_rrw_all_tau):
     notice = read_off_notice(white_rrw_all_tau)
     assert notice is not None
     fitted = white_rrw_all_tau.model.angle_random_walk_deg_per_sqrt_hour()
-    _, read = angle_random_walk_read_off(white_rrw_all_tau)
-    assert abs(read - fitted) > READ_OFF_TOLERANCE * fitted
+    _, read, low, high = angle_random_walk_read_off(white_rrw_all_tau)
+    assert abs(read - fitted) > READ_OFF_TOLERANCE * fitted and not low <= fitted <= high
     assert f"{fitted:.3g} °/√h" in notice.message and f"{read:.3g} °/√h" in notice.message
     assert "internal filter" in notice.message and "--tau-min 1" in notice.message
 

@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from carousel_theory.cli._recording_options import add_recording_options
+from carousel_theory.fit_defaults import DEFAULT_MODEL
 
 if TYPE_CHECKING:  # the adapter imports the analyses: only when the command runs
     from carousel_theory.batch.tasks import TaskOptions
@@ -28,7 +29,11 @@ def _names(text: str) -> tuple[str, ...]:
 def _add_task_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--estimator", default="overlapping", help="allan, fit: Allan variance estimator")
     parser.add_argument(
-        "--model", type=_names, default=("white", "rrw"), metavar="C[,C...]", help="fit: components"
+        "--model",
+        type=_names,
+        default=DEFAULT_MODEL,
+        metavar="C[,C...]",
+        help=f"fit: components (default {','.join(DEFAULT_MODEL)}, as in the fit command)",
     )
     parser.add_argument("--flicker-d", type=float, help="fit: fix the 1/f order d")
     parser.add_argument("--tau-min", type=float, help="fit: smallest τ (s) in the fit")

@@ -13,9 +13,14 @@ from typing import Any
 import numpy as np
 
 from carousel_theory.cli.allan import add_recording_arguments, read_recording, result_as_json
-from carousel_theory.data import Recording
+from carousel_theory.fit_defaults import (
+    DEFAULT_MODEL,
+    DEFAULT_TAU_MIN,
+    DEFAULT_TAU_MIN_OCTAVES,
+    fit_with_default_range,
+)
 from carousel_theory.fit_diagnostics import FitNotice, fit_notices
-from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_recording
+from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
 from carousel_theory.plots import plot_fit, short_title
@@ -27,16 +32,6 @@ PAPER_ROWS = (
     ("rrw_variance_per_s", "σ_q²", "(rad/s)²/s"),
     ("bias_instability", "bias instability (model min σ_A / 0.664)", "rad/s"),
 )
-#: The default model: white noise, rate random walk and 1/f noise (order d fitted), chosen because the
-#: shared ADIS16405 and MPU6050 recordings reject white + RRW alone at every cut-off tried and accept this
-#: one above 1 s (benchmarks/fit_default_model.py).
-DEFAULT_MODEL = ("white", "rrw", "flicker")
-#: The default short-τ cut-off (s): above the internal filters of common MEMS gyros (their bandwidths
-#: are tens of Hz), where the samples stop being correlated and white noise follows its −1/2 slope.
-DEFAULT_TAU_MIN = 1.0
-#: Octave τ a recording must leave at or above DEFAULT_TAU_MIN for the default cut-off to be applied.
-DEFAULT_TAU_MIN_OCTAVES = 6
-
 FIELD_ROWS = (
     ("angle_random_walk_deg_per_sqrt_h", "angle random walk", "°/√h"),
     ("rate_random_walk_deg_per_h_per_sqrt_h", "rate random walk", "°/h/√h"),
@@ -82,9 +77,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--tau-min",
         type=float,
-        help=f"smallest τ (s) in the fit, above the sensor's internal filter (default {DEFAULT_TAU_MIN:g} s "
-        f"when the recording leaves {DEFAULT_TAU_MIN_OCTAVES} octave τ above it; give one sample period, "
-        "e.g. 0.01 at 100 Hz, to fit every τ)",
+        help="smallest τ (s) in the fit, above the sensor's internal filter (default: every τ, and "
+        f"{DEFAULT_TAU_MIN:g} s for an axis whose fit over every τ is rejected, when the recording leaves "
+        f"{DEFAULT_TAU_MIN_OCTAVES} octave τ above it)",
     )
     parser.add_argument("--tau-max", type=float, help="largest τ (s) in the fit")
     parser.add_argument("--iterations", type=int, default=3, help="covariance re-evaluations (default 3)")
@@ -94,38 +89,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(handler=run)
 
 
-def default_tau_min(recording: Recording) -> tuple[float | None, str | None]:
-    """The cut-off ``fit`` uses without --tau-min, and a note when the default cannot be applied.
-
-    :data:`DEFAULT_TAU_MIN` when at least :data:`DEFAULT_TAU_MIN_OCTAVES` octave τ ≥ it hold 3 disjoint
-    clusters of the recording; otherwise no cut-off (every τ is fitted) and a sentence saying so.
-    """
-    sizes = 2 ** np.arange(64)
-    sizes = sizes[(sizes <= len(recording) // 3) & (sizes >= DEFAULT_TAU_MIN * recording.sample_rate)]
-    if len(sizes) >= DEFAULT_TAU_MIN_OCTAVES:
-        return DEFAULT_TAU_MIN, None
-    return None, (
-        f"the default short-τ cut-off ({DEFAULT_TAU_MIN:g} s) is not applied: the recording "
-        f"({recording.duration:.4g} s) leaves only {len(sizes)} octave τ above it (needs "
-        f"{DEFAULT_TAU_MIN_OCTAVES}), so every τ is fitted and an internal filter can bend the short-τ end"
-    )
-
-
 def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitResult], list[str]]:
-    """Read and fit one recording; the notes say how the default cut-off was applied."""
+    """Read and fit one recording; the notes say where the default τ range was changed."""
     recording = read_recording(path, args)
-    tau_min, note = (args.tau_min, None) if args.tau_min is not None else default_tau_min(recording)
-    fits = fit_recording(
+    fits, notes = fit_with_default_range(
         recording,
         args.model,
-        tau_min=tau_min,
+        tau_min=args.tau_min,
         tau_max=args.tau_max,
         label=f"fit {path.name}: axes",
         flicker_d=args.flicker_d,
         estimator=args.estimator,
         iterations=args.iterations,
     )
-    return recording, fits, [note] if note else []
+    return recording, fits, notes
 
 
 def _measured_bias_instability(fit: FitResult) -> tuple[float, float, float, float]:
@@ -440,7 +417,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     for (recording, fits), file_notes in zip(files, notes, strict=True):
         print(f"{recording.source}: {len(recording)} samples at {recording.sample_rate:g} Hz")
-        for line in _notice_lines([FitNotice("default_cut_off", note) for note in file_notes], "  "):
+        for line in _notice_lines([FitNotice("default_range", note) for note in file_notes], "  "):
             print(line)
         for name, fit in fits.items():
             _print_fit(name, fit)
