@@ -174,3 +174,31 @@ def test_the_overlap_check_sees_a_legend_inside_the_data(three_axes):
     plot.legend(loc="upper right")  # the placement the plots no longer use
     assert legend_overlaps_data(figure) == [True]
     pyplot().close(figure)
+
+
+def test_fleet_distributions_flag_outliers_in_a_legend_outside_and_convert_bias_instability():
+    from carousel_theory.batch.report import distributions_figure
+    from carousel_theory.batch.rows import BatchRow
+
+    arw = [1.0, 1.1, 0.9, 1.05, 0.95, 1.02, 30.0]  # the last unit is far outside the others
+    rows = [
+        BatchRow(
+            path=f"unit{k}.csv",
+            task="fit",
+            axis="wx",
+            angle_random_walk_deg_per_sqrt_h=value,
+            bias_instability_deg_per_h=36.0 + k,
+            rate_random_walk_deg_per_h_per_sqrt_h=100.0 + k,
+        )
+        for k, value in enumerate(arw)
+    ]
+    figure = distributions_figure(rows, output_units="deg/s")
+    arw_panel, bias_panel, _ = figure.axes
+    flagged = [line.get_xdata()[0] for line in arw_panel.get_lines()]
+    assert flagged == [30.0]
+    assert bias_panel.get_xlabel() == "bias instability (°/s)"
+    assert bias_panel.get_xlim()[1] < 1.0  # 36–42 °/h is about 0.01 °/s
+    assert figure.get_suptitle() == "Fleet distributions: 7 recordings, 7 axes"
+    assert [text.get_text() for text in figure.legends[0].get_texts()] == ["units", "flagged (|z| > 3.5)"]
+    assert legend_overlaps_data(figure) == [False]
+    pyplot().close(figure)
