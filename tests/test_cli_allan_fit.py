@@ -152,14 +152,20 @@ def test_issue12_fit_says_on_stdout_when_its_model_is_rejected(filtered_npz, cap
     assert "differs from the textbook read-off σ_A(τ)·√τ at τ = 1.28 s" in out
 
 
-def test_issue12_default_model_is_white_rrw_flicker_above_one_second(filtered_npz, capsys):
+def test_issue12_default_model_climbs_the_ladder_until_not_rejected(filtered_npz, capsys):
     assert main(["fit", str(filtered_npz)]) == 0
     out = capsys.readouterr().out
-    assert "(1.28 s … " in out and "1/f order d profiled" in out
+    words = _words(out)
+    assert "model white+rrw+flicker; " in out and "(1.28 s … " in out and "1/f order d profiled" in out
+    assert (
+        "wx: the default model is the first the recording does not reject; rejected: white+rrw over every τ"
+        in words
+    )
+    assert "kept: white+rrw+flicker at τ ≥ 1 s" in words and "not rejected" in words
     assert "WARNING" not in out  # the default model is not rejected on this sensor-like recording
 
 
-def test_issue12_default_range_is_said_when_the_recording_is_too_short_to_refit(tmp_path, capsys):
+def test_issue12_default_model_says_when_the_recording_is_too_short_for_the_cut_off(tmp_path, capsys):
     from test_fit_diagnostics import filtered_sensor
 
     from carousel_theory.data import recording_from_arrays
@@ -169,14 +175,15 @@ def test_issue12_default_range_is_said_when_the_recording_is_too_short_to_refit(
     path = write_recording(short, tmp_path / "short.npz")
     assert main(["fit", str(path)]) == 0
     out = _words(capsys.readouterr().out)
-    assert "wx: the model is rejected over every τ, and the recording (100 s) leaves only 5 octave τ" in out
+    assert "wx: the recording (100 s) leaves only 5 octave τ above 1 s (needs 6)" in out
     assert "(0.01 s … " in out and "WARNING: the model is rejected" in out
 
 
-def test_white_noise_gives_no_notice_by_default(recording_csv, capsys):
+def test_white_noise_keeps_the_simplest_default_model_and_gives_no_notice(recording_csv, capsys):
     assert main(["fit", str(recording_csv)]) == 0
     out = capsys.readouterr().out
-    assert "(0.02 s … " in out and "WARNING" not in out and "read-off" not in out
+    assert out.count("model white+rrw; ") == 2 and "(0.02 s … " in out
+    assert "WARNING" not in out and "read-off" not in out and "default model is the first" not in out
 
 
 def test_issue13_fit_term_at_bound_is_reported_everywhere(filtered_npz, capsys, tmp_path):

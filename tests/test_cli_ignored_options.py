@@ -27,11 +27,7 @@ def recording(tmp_path_factory):
 CASES = [
     ("fit-tau-min-zero", ["fit", "{r}", "--tau-min", "0"], "--tau-min=0.0: must be a positive"),
     ("fit-tau-range-reversed", ["fit", "{r}", "--tau-min", "2", "--tau-max", "1"], "must be below --tau-max"),
-    (
-        "fit-flicker-d-without-flicker",
-        ["fit", "{r}", "--model", "white,rrw", "--flicker-d", "0.5"],
-        "only with 'flicker' in --model",
-    ),
+    ("fit-flicker-d-without-flicker", ["fit", "{r}", "--flicker-d", "0.5"], "only with 'flicker' in --model"),
     ("loop-axis-twice", ["loop", "{r}", "--axes", "wx,wx"], "names an axis twice"),
     ("check-only-empty", ["check", "--only", ""], "must be a non-empty claim-id prefix"),
 ]

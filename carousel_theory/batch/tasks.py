@@ -27,8 +27,7 @@ from carousel_theory.batch.rows import BatchRow
 from carousel_theory.closed_loop import run_loop
 from carousel_theory.data import MAX_VALUES, load_recording
 from carousel_theory.design import DesignSettings, default_schemes, evaluate_scheme, recommended
-from carousel_theory.fit_defaults import DEFAULT_MODEL, fit_with_default_range
-from carousel_theory.fitting import COMPONENTS, NoiseModel
+from carousel_theory.fitting import COMPONENTS, NoiseModel, fit_recording
 from carousel_theory.heading import check_latitude
 from carousel_theory.rotation_schemes import parse_scheme
 from carousel_theory.units import bias_instability_from_allan_minimum, rad_per_s_to_deg_per_h
@@ -51,7 +50,7 @@ class TaskOptions:
     units: str = "rad/s"
     sample_rate: float | None = None
     estimator: str = "overlapping"
-    model: tuple[str, ...] = DEFAULT_MODEL
+    model: tuple[str, ...] = ("white", "rrw")
     flicker_d: float | None = None
     tau_min: float | None = None
     tau_max: float | None = None
@@ -147,7 +146,7 @@ def _fit_fields(fit: Any) -> dict[str, Any]:
 
 def _fitted_axes(path: str, options: TaskOptions, axis: str | None) -> tuple[Any, list[tuple[str, Any]]]:
     recording = _load(path, options)
-    fits, _ = fit_with_default_range(  # the fit command's τ range, so the two agree
+    fits = fit_recording(
         recording,
         options.model,
         axes=None if axis is None else [axis],

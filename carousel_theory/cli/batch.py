@@ -8,7 +8,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from carousel_theory.cli._recording_options import add_recording_options
-from carousel_theory.fit_defaults import DEFAULT_MODEL
 
 if TYPE_CHECKING:  # the adapter imports the analyses: only when the command runs
     from carousel_theory.batch.tasks import TaskOptions
@@ -29,11 +28,7 @@ def _names(text: str) -> tuple[str, ...]:
 def _add_task_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--estimator", default="overlapping", help="allan, fit: Allan variance estimator")
     parser.add_argument(
-        "--model",
-        type=_names,
-        default=DEFAULT_MODEL,
-        metavar="C[,C...]",
-        help=f"fit: components (default {','.join(DEFAULT_MODEL)}, as in the fit command)",
+        "--model", type=_names, default=("white", "rrw"), metavar="C[,C...]", help="fit: components"
     )
     parser.add_argument("--flicker-d", type=float, help="fit: fix the 1/f order d")
     parser.add_argument("--tau-min", type=float, help="fit: smallest τ (s) in the fit")

@@ -13,14 +13,9 @@ from typing import Any
 import numpy as np
 
 from carousel_theory.cli.allan import add_recording_arguments, read_recording, result_as_json
-from carousel_theory.fit_defaults import (
-    DEFAULT_MODEL,
-    DEFAULT_TAU_MIN,
-    DEFAULT_TAU_MIN_OCTAVES,
-    fit_with_default_range,
-)
+from carousel_theory.fit_defaults import DEFAULT_TAU_MIN, DEFAULT_TAU_MIN_OCTAVES, LADDER, select_default_fit
 from carousel_theory.fit_diagnostics import FitNotice, fit_notices
-from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test
+from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
 from carousel_theory.plots import plot_fit, short_title
@@ -67,9 +62,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--model",
         type=_components,
-        default=DEFAULT_MODEL,
         metavar="C[,C...]",
-        help=f"components from {', '.join(COMPONENTS)} (default {','.join(DEFAULT_MODEL)})",
+        help=f"components from {', '.join(COMPONENTS)} (default: per axis the first of "
+        + "; ".join(step.describe() for step in LADDER)
+        + " that the recording does not reject by its χ² test)",
     )
     parser.add_argument(
         "--flicker-d", type=float, help="fix the 1/f order d (default: fitted when flicker is used)"
@@ -77,9 +73,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--tau-min",
         type=float,
-        help="smallest τ (s) in the fit, above the sensor's internal filter (default: every τ, and "
-        f"{DEFAULT_TAU_MIN:g} s for an axis whose fit over every τ is rejected, when the recording leaves "
-        f"{DEFAULT_TAU_MIN_OCTAVES} octave τ above it)",
+        help="smallest τ (s) in the fit, above the sensor's internal filter (default: every τ, or "
+        f"{DEFAULT_TAU_MIN:g} s for the default model when it is rejected over every τ and the recording "
+        f"leaves {DEFAULT_TAU_MIN_OCTAVES} octave τ above it)",
     )
     parser.add_argument("--tau-max", type=float, help="largest τ (s) in the fit")
     parser.add_argument("--iterations", type=int, default=3, help="covariance re-evaluations (default 3)")
@@ -90,19 +86,30 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitResult], list[str]]:
-    """Read and fit one recording; the notes say where the default τ range was changed."""
+    """Read and fit one recording (the default model: :func:`select_default_fit`); the notes say which
+    model each axis needed."""
     recording = read_recording(path, args)
-    fits, notes = fit_with_default_range(
-        recording,
-        args.model,
-        tau_min=args.tau_min,
-        tau_max=args.tau_max,
-        label=f"fit {path.name}: axes",
-        flicker_d=args.flicker_d,
-        estimator=args.estimator,
-        iterations=args.iterations,
+    common = {
+        "tau_min": args.tau_min,
+        "tau_max": args.tau_max,
+        "label": f"fit {path.name}: axes",
+        "estimator": args.estimator,
+        "iterations": args.iterations,
+    }
+    if args.model is None:
+        fits, notes = select_default_fit(recording, **common)
+        return recording, fits, notes
+    return recording, fit_recording(recording, args.model, flicker_d=args.flicker_d, **common), []
+
+
+def fitted_components(fit: FitResult) -> tuple[str, ...]:
+    """The components of a fit, from its parameter names (``white_variance`` → ``white``)."""
+    names = {"quantization_squared": "quantization"}
+    return tuple(
+        names.get(p, p.removesuffix("_variance"))
+        for p in fit.parameters
+        if p.endswith(("_variance", "_squared"))
     )
-    return recording, fits, notes
 
 
 def _measured_bias_instability(fit: FitResult) -> tuple[float, float, float, float]:
@@ -188,8 +195,8 @@ def _report_header(files: list[tuple[Any, dict[str, FitResult]]], args: argparse
         "",
         "# Noise model of the recordings",
         "",
-        f"Command: `carousel-theory fit {' '.join(str(path) for path in args.data)} "
-        f"--model {','.join(args.model)}"
+        f"Command: `carousel-theory fit {' '.join(str(path) for path in args.data)}"
+        + (f" --model {','.join(args.model)}" if args.model else "")
         + (f" --tau-min {args.tau_min:g}" if args.tau_min is not None else "")
         + (f" --tau-max {args.tau_max:g}" if args.tau_max is not None else "")
         + (f" --flicker-d {args.flicker_d:g}" if args.flicker_d is not None else "")
@@ -217,23 +224,21 @@ def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.
         for key, label, unit in rows:
             if all(key in table[a] for a in axes):
                 lines.append(_row(label, unit, [_format(*table[a][key]) for a in axes]))
-    if "flicker" in args.model:
-        lines.append(
-            _row(
-                "1/f σ_w² (eq. (3))",
-                "(rad/s)²",
-                [
-                    _format(fits[a].model.flicker_variance, fits[a].standard_errors["flicker_variance"])
-                    for a in axes
-                ],
-            )
-        )
-        if args.flicker_d is None:
+    for key, label, unit in (
+        ("flicker_variance", "1/f σ_w² (eq. (3))", "(rad/s)²"),
+        ("flicker_d", "1/f order d", "—"),
+    ):
+        if any(key in fits[a].standard_errors for a in axes):
             lines.append(
                 _row(
-                    "1/f order d",
-                    "—",
-                    [_format(fits[a].model.flicker_d, fits[a].standard_errors["flicker_d"]) for a in axes],
+                    label,
+                    unit,
+                    [
+                        _format(getattr(fits[a].model, key), fits[a].standard_errors[key])
+                        if key in fits[a].standard_errors
+                        else "—"
+                        for a in axes
+                    ],
                 )
             )
     return lines
@@ -343,9 +348,10 @@ def _check_fit_options(args: argparse.Namespace) -> None:
             raise ValueError(f"--{name.replace('_', '-')}={value!r}: must be a positive number of seconds")
     if args.tau_min is not None and args.tau_max is not None and args.tau_min >= args.tau_max:
         raise ValueError(f"--tau-min={args.tau_min!r}: must be below --tau-max={args.tau_max!r}")
-    if args.flicker_d is not None and "flicker" not in args.model:
+    if args.flicker_d is not None and "flicker" not in (args.model or ()):
         raise ValueError(
-            f"--flicker-d={args.flicker_d!r}: only with 'flicker' in --model (got {args.model!r})"
+            f"--flicker-d={args.flicker_d!r}: only with 'flicker' in --model (got "
+            f"{'the default model' if args.model is None else repr(args.model)})"
         )
 
 
@@ -369,7 +375,10 @@ def _notice_lines(notices: list[FitNotice], indent: str) -> list[str]:
 
 def _print_fit(name: str, fit: FitResult) -> None:
     """One axis on stdout: method and χ², the values (terms held at zero said so), the notices."""
-    print(f"  {name}: {fit.method}; χ² = {fit.chi_square:.3g} on {fit.degrees_of_freedom} degrees of freedom")
+    print(
+        f"  {name}: model {'+'.join(fitted_components(fit))}; {fit.method}; χ² = {fit.chi_square:.3g} on "
+        f"{fit.degrees_of_freedom} degrees of freedom"
+    )
     held = {key for parameter in fit.at_bound for key in _DERIVED_KEYS.get(parameter, ())}
     for key, value in {**fit.paper_units(), **fit.field_units()}.items():
         shown = "0 (held at zero: no standard error)" if key in held else _format(*value)
@@ -408,7 +417,7 @@ def run(args: argparse.Namespace) -> int:
     notes = [file_notes for _, _, file_notes in fitted]
     if args.plot:
         recording, fits = files[0]
-        title = short_title(recording.source, f"Allan deviation and the fitted {'+'.join(args.model)} model")
+        title = short_title(recording.source, "Allan deviation and the fitted noise model")
         plot_fit(args.plot, fits, title)
     if args.markdown:
         write_text_atomic(args.markdown, markdown_report(files, args, notes))
