@@ -3,8 +3,9 @@ recordings.
 
 Usage: ``python benchmarks/fit_default_model.py [DATA_DIR] [--candidates NAME ...]``
 
-Every candidate (components and a short-τ cut-off ``tau_min`` in s, none, or the default range of
-:func:`carousel_theory.fit_defaults.fit_with_default_range`) is fitted with
+Every candidate (components and a short-τ cut-off ``tau_min`` in s, none, every τ then τ ≥ 1 s for an
+axis rejected there, or the fit command's default,
+:func:`carousel_theory.fit_defaults.select_default_fit`) is fitted with
 :func:`carousel_theory.fitting.fit_recording` to every gyro axis of every static recording under DATA_DIR
 (default ``../shared/data``): the ADIS16405 runs (100 Hz, uniform) and the MPU6050 static run (bursty
 timestamps, bin-averaged onto a uniform grid by :func:`carousel_theory.closed_loop.resample.uniform_resample`
@@ -21,7 +22,7 @@ from pathlib import Path
 
 from carousel_theory.closed_loop.resample import uniform_resample
 from carousel_theory.data import Recording, load_recording
-from carousel_theory.fit_defaults import fit_with_default_range
+from carousel_theory.fit_defaults import select_default_fit
 from carousel_theory.fitting import fit_recording
 
 #: Name: (components, tau_min in s or None for every τ or -1 for the default range, fixed 1/f order d).
@@ -33,13 +34,14 @@ CANDIDATES: dict[str, tuple[tuple[str, ...], float | None, float | None]] = {
     "white,rrw,flicker τ≥0.1": (("white", "rrw", "flicker"), 0.1, None),
     "white,rrw,flicker τ≥0.3": (("white", "rrw", "flicker"), 0.3, None),
     "white,rrw,flicker τ≥1": (("white", "rrw", "flicker"), 1.0, None),
-    "white,rrw,flicker, every τ or τ≥1 if rejected (default)": (("white", "rrw", "flicker"), -1.0, None),
+    "white,rrw,flicker, every τ or τ≥1 if rejected": (("white", "rrw", "flicker"), -1.0, None),
+    "default: first of the ladder not rejected": ((), -2.0, None),
     "ar,rrw,flicker": (("ar", "rrw", "flicker"), None, None),
     "ar,rrw": (("ar", "rrw"), None, None),
     "ar,rrw,flicker τ≥0.1": (("ar", "rrw", "flicker"), 0.1, None),
     "white,rrw,flicker d=0.5": (("white", "rrw", "flicker"), None, 0.5),
     "white,rrw,flicker d=0.5 τ≥1": (("white", "rrw", "flicker"), 1.0, 0.5),
-    "white,rrw,flicker d=0.5, default range": (("white", "rrw", "flicker"), -1.0, 0.5),
+    "white,rrw,flicker d=0.5, every τ or τ≥1 if rejected": (("white", "rrw", "flicker"), -1.0, 0.5),
 }
 
 
@@ -68,8 +70,22 @@ def main() -> None:
         start, cells, rejected, at_zero, total = time.perf_counter(), [], 0, 0, 0
         for recording in loaded:
             try:
-                if tau_min == -1.0:  # the default range of carousel_theory.fit_defaults
-                    fits, _ = fit_with_default_range(recording, components, iterations=3, flicker_d=flicker_d)
+                if tau_min == -2.0:  # the default of the fit command
+                    fits, _ = select_default_fit(recording, iterations=3)
+                elif tau_min == -1.0:  # every τ, then τ ≥ 1 s for an axis rejected there
+                    fits = fit_recording(recording, components, iterations=3, flicker_d=flicker_d)
+                    rejected = [name for name, fit in fits.items() if fit.p_value < 0.01]
+                    if rejected:
+                        fits.update(
+                            fit_recording(
+                                recording,
+                                components,
+                                axes=rejected,
+                                tau_min=1.0,
+                                iterations=3,
+                                flicker_d=flicker_d,
+                            )
+                        )
                 else:
                     fits = fit_recording(
                         recording, components, tau_min=tau_min, iterations=3, flicker_d=flicker_d

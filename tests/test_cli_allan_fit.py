@@ -193,7 +193,9 @@ def test_issue13_fit_term_at_bound_is_reported_everywhere(filtered_npz, capsys, 
     out = capsys.readouterr().out
     assert "angle_random_walk_deg_per_sqrt_h         0 (held at zero: no standard error)" in out
     assert "white_variance is held at zero" in _words(out) and "nan" not in out.lower()
-    assert "white_variance is held at zero" in report.read_text(encoding="utf-8")
+    text = report.read_text(encoding="utf-8")
+    assert "white_variance is held at zero" in text
+    assert "| angle random walk | °/√h | 0 (held at zero) |" in text
     assert main([*argv, "--json"]) == 0
     column = json.loads(capsys.readouterr().out)["files"][0]["columns"]["wx"]
     kinds = [notice["kind"] for notice in column["notices"]]

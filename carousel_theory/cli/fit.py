@@ -215,6 +215,24 @@ def _report_header(files: list[tuple[Any, dict[str, FitResult]]], args: argparse
     ]
 
 
+#: The printed keys that come from each fitted variance (shown as held at zero when it is).
+_DERIVED_KEYS = {
+    "white_variance": ("white_variance_at_1s", "angle_random_walk_deg_per_sqrt_h"),
+    "rrw_variance": ("rrw_variance_per_s", "rate_random_walk_deg_per_h_per_sqrt_h"),
+}
+
+
+def _held_keys(fit: FitResult) -> set[str]:
+    """Printed keys of the parameters held at zero (and the 1/f order d of a 1/f term held at zero)."""
+    held = {key for parameter in fit.at_bound for key in (parameter, *_DERIVED_KEYS.get(parameter, ()))}
+    return held | ({"flicker_d"} if "flicker_variance" in fit.at_bound else set())
+
+
+def _cell(fit: FitResult, key: str, value: tuple[float, float], held: str = "0 (held at zero)") -> str:
+    """``value ± error``, or ``held`` for a parameter held at zero (it has no standard error)."""
+    return held if key in _held_keys(fit) else _format(*value)
+
+
 def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.Namespace) -> list[str]:
     """Table III's and the field's rows, then the 1/f rows when fitted."""
     paper = {axis: fit.paper_units() for axis, fit in fits.items()}
@@ -223,7 +241,7 @@ def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.
     for table, rows in ((paper, PAPER_ROWS), (field, FIELD_ROWS)):
         for key, label, unit in rows:
             if all(key in table[a] for a in axes):
-                lines.append(_row(label, unit, [_format(*table[a][key]) for a in axes]))
+                lines.append(_row(label, unit, [_cell(fits[a], key, table[a][key]) for a in axes]))
     for key, label, unit in (
         ("flicker_variance", "1/f σ_w² (eq. (3))", "(rad/s)²"),
         ("flicker_d", "1/f order d", "—"),
@@ -234,7 +252,7 @@ def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.
                     label,
                     unit,
                     [
-                        _format(getattr(fits[a].model, key), fits[a].standard_errors[key])
+                        _cell(fits[a], key, (getattr(fits[a].model, key), fits[a].standard_errors[key]))
                         if key in fits[a].standard_errors
                         else "—"
                         for a in axes
@@ -355,13 +373,6 @@ def _check_fit_options(args: argparse.Namespace) -> None:
         )
 
 
-#: The printed keys that come from each fitted variance (shown as held at zero when it is).
-_DERIVED_KEYS = {
-    "white_variance": ("white_variance_at_1s", "angle_random_walk_deg_per_sqrt_h"),
-    "rrw_variance": ("rrw_variance_per_s", "rate_random_walk_deg_per_h_per_sqrt_h"),
-}
-
-
 def _notice_lines(notices: list[FitNotice], indent: str) -> list[str]:
     """Each notice wrapped at 110 columns under a ``note:`` or ``WARNING:`` tag."""
     lines = []
@@ -379,10 +390,8 @@ def _print_fit(name: str, fit: FitResult) -> None:
         f"  {name}: model {'+'.join(fitted_components(fit))}; {fit.method}; χ² = {fit.chi_square:.3g} on "
         f"{fit.degrees_of_freedom} degrees of freedom"
     )
-    held = {key for parameter in fit.at_bound for key in _DERIVED_KEYS.get(parameter, ())}
     for key, value in {**fit.paper_units(), **fit.field_units()}.items():
-        shown = "0 (held at zero: no standard error)" if key in held else _format(*value)
-        print(f"    {key:40s} {shown}")
+        print(f"    {key:40s} {_cell(fit, key, value, '0 (held at zero: no standard error)')}")
     for line in _notice_lines(fit_notices(fit), "    "):
         print(line)
 
