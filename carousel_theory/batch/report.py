@@ -144,18 +144,30 @@ def _outlier_lines(rows: Sequence[BatchRow]) -> list[str]:
 
 
 def _distribution_panel(plot: Any, values: np.ndarray, label: str, unit: str) -> None:
-    """One histogram (log-spaced bins) with the flagged units as red lines."""
+    """One histogram with the flagged units as red lines: log-spaced bins on a log axis when the values
+    span more than a decade, linear ones otherwise (a log axis over less than a decade has no readable
+    ticks); whole counts on the y axis."""
+    from matplotlib.ticker import MaxNLocator
+
     scores = robust_z_scores(values)
     positive = values[np.isfinite(values) & (values > 0)]
     if positive.size:
         low, high = positive.min(), positive.max()
-        bins = np.geomspace(low / 1.05, high * 1.05, 25) if high > low else 10
+        wide = high > 10 * low
+        bins = (
+            (np.geomspace(low / 1.05, high * 1.05, 25) if wide else np.linspace(low, high, 25))
+            if high > low
+            else 10
+        )
         plot.hist(positive, bins=bins, color="C0", alpha=0.8, label="units")
-        plot.set_xscale("log")
+        if wide:
+            plot.set_xscale("log")
         for index, value in enumerate(values[np.abs(np.nan_to_num(scores)) > OUTLIER_THRESHOLD]):
             plot.axvline(
                 value, color="C3", lw=1.0, label=None if index else f"flagged (|z| > {OUTLIER_THRESHOLD:g})"
             )
+    plot.yaxis.set_major_locator(MaxNLocator(integer=True))
+    plot.set_title(f"{positive.size} of {len(values)} axes above 0", fontsize=8)
     plot.set_xlabel(f"{label} ({unit})")
     plot.set_ylabel("units")
 
