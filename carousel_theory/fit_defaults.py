@@ -18,7 +18,9 @@ Hence :data:`LADDER`: each axis gets the first step whose fit the recording does
 p ≥ :data:`carousel_theory.fit_diagnostics.REJECTION_LEVEL` — white + RRW over every τ; white + RRW + 1/f
 over every τ; white + RRW + 1/f at τ ≥ :data:`DEFAULT_TAU_MIN` (only when the recording leaves
 :data:`DEFAULT_TAU_MIN_OCTAVES` octave τ above it). When every step is rejected the last one tried is
-kept, with its rejection notice. A note says which step each axis needed and why.
+kept, with its rejection notice. A note says which step each axis needed and why. The kept step is
+chosen by the same χ² test that its p-value reports, so that p-value is a check of the choice, not an
+independent test; the standard errors assume the kept model.
 """
 
 from __future__ import annotations
