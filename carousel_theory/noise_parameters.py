@@ -30,7 +30,10 @@ class Quantity:
         return Quantity(self.value * factor, self.standard_error * factor, unit)
 
     def text(self) -> str:
-        """``value ± error unit`` (``± —`` when there is no standard error), in the printed unit."""
+        """``value ± error unit`` (``± —`` when there is no standard error; a zero without one is a term
+        held at zero, and says so), in the printed unit."""
+        if self.value == 0 and not math.isfinite(self.standard_error):
+            return f"0 {units.display_unit(self.unit)} (held at zero: no standard error)"
         error = f"{self.standard_error:.2g}" if math.isfinite(self.standard_error) else "—"
         return f"{self.value:.4g} ± {error} {units.display_unit(self.unit)}"
 

@@ -125,3 +125,80 @@ def test_binary_file_named_csv_and_unknown_component(tmp_path, capsys):
         main(["fit", str(path), "--model", "white,pink"])
     assert stop.value.code == 2
     assert "must be comma-separated names" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def filtered_npz(tmp_path_factory) -> Path:
+    """1000 s at 100 Hz of white noise through a 4-sample moving average plus 1/f noise."""
+    from test_fit_diagnostics import filtered_sensor
+
+    from carousel_theory.data import recording_from_arrays
+    from carousel_theory.simulate import write_recording
+
+    path = tmp_path_factory.mktemp("filtered") / "filtered.npz"
+    return write_recording(recording_from_arrays({"wx": filtered_sensor()}, sample_rate=100.0), path)
+
+
+def _words(text: str) -> str:
+    return " ".join(text.split())  # the notices are wrapped at 110 columns
+
+
+def test_issue12_fit_says_on_stdout_when_its_model_is_rejected(filtered_npz, capsys):
+    assert main(["fit", str(filtered_npz), "--model", "white,rrw", "--tau-min", "0.01"]) == 0
+    out = _words(capsys.readouterr().out)
+    assert "WARNING: the model is rejected by its own χ² test" in out
+    assert "standard error above assumes a model that does not hold and is too small" in out
+    assert "--tau-min 1" in out and "'flicker'" in out and "carousel-theory loop" in out
+    assert "differs from the textbook read-off σ_A(τ)·√τ at τ = 1.28 s" in out
+
+
+def test_issue12_default_model_climbs_the_ladder_until_not_rejected(filtered_npz, capsys):
+    assert main(["fit", str(filtered_npz)]) == 0
+    out = capsys.readouterr().out
+    words = _words(out)
+    assert "model white+rrw+flicker; " in out and "(1.28 s … " in out and "1/f order d profiled" in out
+    assert (
+        "wx: the default model is the first the recording does not reject; rejected: white+rrw over every τ"
+        in words
+    )
+    assert "kept: white+rrw+flicker at τ ≥ 1 s" in words and "not rejected" in words
+    assert "WARNING" not in out  # the default model is not rejected on this sensor-like recording
+
+
+def test_issue12_default_model_says_when_the_recording_is_too_short_for_the_cut_off(tmp_path, capsys):
+    from test_fit_diagnostics import filtered_sensor
+
+    from carousel_theory.data import recording_from_arrays
+    from carousel_theory.simulate import write_recording
+
+    short = recording_from_arrays({"wx": filtered_sensor(10_000)}, sample_rate=100.0)
+    path = write_recording(short, tmp_path / "short.npz")
+    assert main(["fit", str(path)]) == 0
+    out = _words(capsys.readouterr().out)
+    assert "wx: the recording (100 s) leaves only 5 octave τ above 1 s (needs 6)" in out
+    assert "(0.01 s … " in out and "WARNING: the model is rejected" in out
+
+
+def test_white_noise_keeps_the_simplest_default_model_and_gives_no_notice(recording_csv, capsys):
+    assert main(["fit", str(recording_csv)]) == 0
+    out = capsys.readouterr().out
+    assert out.count("model white+rrw; ") == 2 and "(0.02 s … " in out
+    assert "WARNING" not in out and "read-off" not in out and "default model is the first" not in out
+
+
+def test_issue13_fit_term_at_bound_is_reported_everywhere(filtered_npz, capsys, tmp_path):
+    argv = ["fit", str(filtered_npz), "--model", "white,rrw,flicker", "--tau-min", "0.01"]
+    report = tmp_path / "r.md"
+    assert main([*argv, "--markdown", str(report)]) == 0
+    out = capsys.readouterr().out
+    (arw_line,) = [line for line in out.splitlines() if line.strip().startswith("angle random walk N")]
+    assert "0 °/√h (held at zero: no standard error)" in arw_line
+    assert "white_variance is held at zero" in _words(out) and "nan" not in out.lower()
+    text = report.read_text(encoding="utf-8")
+    assert "white_variance is held at zero" in text
+    assert "| angle random walk | °/√h | 0 (held at zero) |" in text
+    assert main([*argv, "--json"]) == 0
+    column = json.loads(capsys.readouterr().out)["files"][0]["columns"]["wx"]
+    kinds = [notice["kind"] for notice in column["notices"]]
+    assert "term_at_bound" in kinds and "model_rejected" in kinds
+    assert column["at_bound"][0] == "white_variance"

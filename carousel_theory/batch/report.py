@@ -15,11 +15,13 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from carousel_theory.batch.rows import BatchRow
 from carousel_theory.batch.store import write_atomically
+from carousel_theory.units import from_rad_per_s, rate_to_rad_per_s
 
 __all__ = ["OUTLIER_THRESHOLD", "PARAMETERS", "Outlier", "robust_z_scores", "write_report"]
 
@@ -141,31 +143,68 @@ def _outlier_lines(rows: Sequence[BatchRow]) -> list[str]:
     return lines
 
 
-def plot_distributions(rows: Sequence[BatchRow], path: Path) -> Path:
-    """Histograms of ARW, bias instability and RRW across the fleet (log-spaced bins), flagged units
-    marked in red."""
-    import matplotlib
+def _distribution_panel(plot: Any, values: np.ndarray, label: str, unit: str) -> None:
+    """One histogram with the flagged units as red lines: log-spaced bins on a log axis when the values
+    span more than a decade, linear ones otherwise (a log axis over less than a decade has no readable
+    ticks); whole counts on the y axis."""
+    from matplotlib.ticker import MaxNLocator
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, axes = plt.subplots(1, len(PARAMETERS), figsize=(11.0, 3.4), layout="constrained")
-    for plot, (name, label, unit) in zip(axes, PARAMETERS, strict=True):
-        values = np.array([getattr(row, name) for row in _ok(rows)], dtype=np.float64)
-        scores = robust_z_scores(values)
-        positive = values[np.isfinite(values) & (values > 0)]
-        if positive.size:
-            low, high = positive.min(), positive.max()
-            bins = np.geomspace(low / 1.05, high * 1.05, 25) if high > low else 10
-            plot.hist(positive, bins=bins, color="C0", alpha=0.8)
+    scores = robust_z_scores(values)
+    positive = values[np.isfinite(values) & (values > 0)]
+    if positive.size:
+        low, high = positive.min(), positive.max()
+        wide = high > 10 * low
+        bins = (
+            (np.geomspace(low / 1.05, high * 1.05, 25) if wide else np.linspace(low, high, 25))
+            if high > low
+            else 10
+        )
+        plot.hist(positive, bins=bins, color="C0", alpha=0.8, label="units")
+        if wide:
             plot.set_xscale("log")
-            for value in values[np.abs(np.nan_to_num(scores)) > OUTLIER_THRESHOLD]:
-                plot.axvline(value, color="C3", lw=1.0)
-        plot.set_xlabel(f"{label} ({unit})")
-        plot.set_ylabel("units")
-    figure.suptitle("Fleet distributions (red: flagged by modified z > 3.5)", fontsize=10)
-    write_atomically(path, lambda temporary: figure.savefig(temporary, dpi=110, format="png"))
-    plt.close(figure)
+        for index, value in enumerate(values[np.abs(np.nan_to_num(scores)) > OUTLIER_THRESHOLD]):
+            plot.axvline(
+                value, color="C3", lw=1.0, label=None if index else f"flagged (|z| > {OUTLIER_THRESHOLD:g})"
+            )
+    plot.yaxis.set_major_locator(MaxNLocator(integer=True))
+    plot.set_title(f"{positive.size} of {len(values)} axes above 0", fontsize=8)
+    plot.set_xlabel(f"{label} ({unit})")
+    plot.set_ylabel("units")
+
+
+def distributions_figure(rows: Sequence[BatchRow], output_units: str = "deg/h") -> Any:
+    """Histograms of ARW, bias instability and RRW across the fleet (log-spaced bins), flagged units
+    marked in red, one legend below the panels. The bias instability is drawn in ``output_units`` (the
+    default °/h matches the report's table); ARW and RRW stay in °/√h and °/h/√h (IEEE Std 952)."""
+    from carousel_theory.plots import pyplot, unit_label
+
+    unit_label(output_units)
+    good = _ok(rows)
+    figure, axes = pyplot().subplots(1, len(PARAMETERS), figsize=(11.0, 3.8), layout="constrained")
+    for plot, (name, label, unit) in zip(axes, PARAMETERS, strict=True):
+        values = np.array([getattr(row, name) for row in good], dtype=np.float64)
+        if name == "bias_instability_deg_per_h":
+            values = from_rad_per_s(rate_to_rad_per_s(values, "deg/h"), output_units)
+            unit = unit_label(output_units)
+        _distribution_panel(plot, values, label, unit)
+    recordings = len({row.path for row in good})
+    figure.suptitle(f"Fleet distributions: {recordings} recordings, {len(good)} axes", fontsize=10)
+    handles = {
+        text: handle for plot in axes for handle, text in zip(*plot.get_legend_handles_labels(), strict=True)
+    }
+    figure.legend(list(handles.values()), list(handles), loc="outside lower center", ncols=2, fontsize=8)
+    return figure
+
+
+def plot_distributions(rows: Sequence[BatchRow], path: Path, output_units: str = "deg/h") -> Path:
+    """Write :func:`distributions_figure` to ``path`` atomically."""
+    figure = distributions_figure(rows, output_units)
+    try:
+        write_atomically(path, lambda temporary: figure.savefig(temporary, dpi=110, format="png"))
+    finally:
+        from carousel_theory.plots import pyplot
+
+        pyplot().close(figure)
     return path
 
 

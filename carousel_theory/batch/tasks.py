@@ -27,6 +27,7 @@ from carousel_theory.batch.rows import BatchRow
 from carousel_theory.closed_loop import run_loop
 from carousel_theory.data import MAX_VALUES, load_recording
 from carousel_theory.design import DesignSettings, default_schemes, evaluate_scheme, recommended
+from carousel_theory.fit_defaults import select_default_fit
 from carousel_theory.fitting import COMPONENTS, NoiseModel, fit_recording
 from carousel_theory.heading import check_latitude
 from carousel_theory.rotation_schemes import parse_scheme
@@ -40,7 +41,8 @@ class TaskOptions:
     """The options of the single-file commands that change a result.
 
     ``columns``, ``units`` and ``sample_rate`` are the recording options (``--column``, ``--units``,
-    ``--sample-rate``); ``estimator`` serves ``allan`` and ``fit``; ``model``, ``flicker_d``, ``tau_min``,
+    ``--sample-rate``); ``estimator`` serves ``allan`` and ``fit``; ``model`` (None: the default ladder of
+    :func:`carousel_theory.fit_defaults.select_default_fit`, as ``fit``), ``flicker_d``, ``tau_min``,
     ``tau_max`` and ``iterations`` serve ``fit`` (and ``design``); ``samples_per_revolution``, ``alpha``
     and ``loop_axes`` serve ``loop``; ``latitude``, ``design_durations`` and ``schemes`` (empty: the
     built-in sweep) serve ``design``.
@@ -50,7 +52,7 @@ class TaskOptions:
     units: str = "rad/s"
     sample_rate: float | None = None
     estimator: str = "overlapping"
-    model: tuple[str, ...] = ("white", "rrw")
+    model: tuple[str, ...] | None = None
     flicker_d: float | None = None
     tau_min: float | None = None
     tau_max: float | None = None
@@ -150,6 +152,16 @@ def _fit_fields(fit: Any) -> dict[str, Any]:
 
 def _fitted_axes(path: str, options: TaskOptions, axis: str | None) -> tuple[Any, list[tuple[str, Any]]]:
     recording = _load(path, options)
+    if options.model is None:
+        fits, _ = select_default_fit(
+            recording,
+            axes=None if axis is None else [axis],
+            tau_min=options.tau_min,
+            tau_max=options.tau_max,
+            estimator=options.estimator,
+            iterations=options.iterations,
+        )
+        return recording, list(fits.items())
     fits = fit_recording(
         recording,
         options.model,
@@ -290,9 +302,13 @@ def check_options(task: str, options: TaskOptions) -> None:
         raise ValueError(f"task={task!r}: must be one of {sorted(TASKS)}")
     if options.estimator not in ESTIMATORS:
         raise ValueError(f"estimator={options.estimator!r}: must be one of {ESTIMATORS}")
-    unknown = [name for name in options.model if name not in COMPONENTS]
-    if unknown or not options.model:
+    unknown = [name for name in options.model or () if name not in COMPONENTS]
+    if unknown or options.model == ():
         raise ValueError(f"model={options.model!r}: must be names from {COMPONENTS}")
+    if options.flicker_d is not None and "flicker" not in (options.model or ()):
+        raise ValueError(
+            f"flicker_d={options.flicker_d!r}: only with 'flicker' in model (got {options.model!r})"
+        )
     if options.iterations < 1:
         raise ValueError(f"iterations={options.iterations!r}: must be >= 1")
     if not 0 < options.alpha < 0.5:

@@ -15,7 +15,8 @@ from carousel_theory.cli._output_units import OutputUnits, add_output_units_opti
 from carousel_theory.cli._recording_options import add_recording_options, reader_keywords
 from carousel_theory.data import Recording, load_recording
 from carousel_theory.json_output import json_document, strict_json
-from carousel_theory.output_files import atomic_output, plan_outputs
+from carousel_theory.output_files import plan_outputs
+from carousel_theory.plots import plot_allan, short_title
 from carousel_theory.progress import progress
 
 
@@ -92,49 +93,6 @@ def result_as_json(result: AllanResult) -> dict[str, Any]:
     return allan_record(result, OutputUnits())
 
 
-def plot_allan(
-    path: Path,
-    results: dict[str, AllanResult],
-    title: str,
-    models: dict[str, tuple[np.ndarray, np.ndarray]] | None = None,
-) -> None:
-    """Log-log Allan deviation with its intervals per column, and model curves (τ, AVAR) when given."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, axes = plt.subplots(figsize=(7.5, 5.0), layout="constrained")
-    for index, (name, result) in enumerate(results.items()):
-        colour = f"C{index}"
-        deviation = np.sqrt(result.avar)
-        below = deviation - np.sqrt(result.ci_low)
-        above = np.sqrt(result.ci_high) - deviation
-        axes.errorbar(
-            result.tau,
-            deviation,
-            yerr=[below, above],
-            fmt="o",
-            ms=3.5,
-            capsize=2.5,
-            color=colour,
-            label=f"{name} ({result.estimator}, {100 * result.confidence:g} % interval)",
-        )
-        if models and name in models:
-            tau, avar = models[name]
-            axes.plot(tau, np.sqrt(avar), "-", color=colour, lw=1.3, label=f"{name} fitted model")
-    axes.set_xscale("log")
-    axes.set_yscale("log")
-    axes.set_xlabel("averaging time τ (s)")
-    axes.set_ylabel("Allan deviation σ_A(τ) (rad/s)")
-    axes.set_title(title, fontsize=10)
-    axes.grid(True, which="both", alpha=0.3)
-    axes.legend(fontsize=8)
-    with atomic_output(path) as temporary:
-        figure.savefig(temporary, dpi=120, format=Path(path).suffix.lstrip(".") or "png")
-    plt.close(figure)
-
-
 def _document(
     recording: Recording, results: dict[str, AllanResult], args: argparse.Namespace
 ) -> dict[str, Any]:
@@ -184,7 +142,12 @@ def run(args: argparse.Namespace) -> int:
             confidence=args.confidence,
         )
     if args.plot:
-        plot_allan(args.plot, results, f"{recording.source}: Allan deviation")
+        plot_allan(
+            args.plot,
+            results,
+            short_title(recording.source, "Allan deviation"),
+            output_units=args.output_units,
+        )
     if args.json:
         sys.stdout.write(strict_json(json_document("allan", _document(recording, results, args))))
         return 0

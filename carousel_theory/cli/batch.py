@@ -28,7 +28,11 @@ def _names(text: str) -> tuple[str, ...]:
 def _add_task_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--estimator", default="overlapping", help="allan, fit: Allan variance estimator")
     parser.add_argument(
-        "--model", type=_names, default=("white", "rrw"), metavar="C[,C...]", help="fit: components"
+        "--model",
+        type=_names,
+        default=None,
+        metavar="C[,C...]",
+        help="fit, design: components (default: the fit command's default model, chosen per axis)",
     )
     parser.add_argument("--flicker-d", type=float, help="fit: fix the 1/f order d")
     parser.add_argument("--tau-min", type=float, help="fit: smallest τ (s) in the fit")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from dataclasses import asdict
+from dataclasses import asdict, replace
 from pathlib import Path
 from typing import Any
 
@@ -174,27 +174,21 @@ def _print_table(results: list[SchemeResult], best: str) -> None:
 
 
 def _plot(path: Path, schemes: list[Any], durations: list[float], settings: DesignSettings) -> None:
-    import matplotlib
+    """Heading σ against record duration per scheme, one marker per scheme, the legend outside the axes.
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    The heading error is an angle (°), so this plot has no rate unit to choose.
+    """
+    from carousel_theory.plots import MARKERS, OUTSIDE_RIGHT, pyplot, save_figure
 
+    plt = pyplot()
     grid = (
         np.geomspace(min(durations), max(durations), 24)
         if len(durations) > 1
         else np.geomspace(durations[0] / 30, durations[0], 24)
     )
-    figure, axes = plt.subplots(figsize=(8, 5))
-    quick = DesignSettings(
-        settings.noise,
-        settings.sample_rate,
-        settings.latitude,
-        settings.heading,
-        settings.bias_sigma,
-        settings.imperfections,
-        exact=False,
-    )
-    for scheme in schemes:
+    figure, axes = plt.subplots(figsize=(9, 5), layout="constrained")
+    quick = replace(settings, exact=False)
+    for index, scheme in enumerate(schemes):
         points = []
         for duration in grid:
             try:
@@ -203,15 +197,15 @@ def _plot(path: Path, schemes: list[Any], durations: list[float], settings: Desi
                 continue  # shorter than one cycle of this scheme
         if points:
             x, y = zip(*points, strict=True)
-            axes.loglog(x, y, label=evaluate_scheme(scheme, [points[0][0]], quick)[0].scheme)
+            name = evaluate_scheme(scheme, [points[0][0]], quick)[0].scheme
+            axes.loglog(x, y, marker=MARKERS[index % len(MARKERS)], ms=3.5, lw=1.1, label=name)
     axes.set_xlabel("record duration (s)")
     axes.set_ylabel("heading σ, linearised (°)")
-    axes.set_title(f"latitude {settings.latitude:g}°")
-    axes.grid(True, which="both", alpha=0.3)
-    axes.legend(fontsize=7)
-    figure.tight_layout()
-    figure.savefig(path, dpi=120)
-    plt.close(figure)
+    axes.set_title(f"Heading error of each rotation scheme at latitude {settings.latitude:g}°", fontsize=10)
+    axes.grid(True, which="major", alpha=0.35)
+    axes.grid(True, which="minor", alpha=0.12)
+    axes.legend(fontsize=7, **OUTSIDE_RIGHT)
+    save_figure(figure, path)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -6,17 +6,21 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import textwrap
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from carousel_theory.cli._fit_output import FIT_NULL_REASONS, fit_as_json, fit_lines
-from carousel_theory.cli._output_units import add_output_units_option, output_units
-from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording
+from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
+from carousel_theory.cli.allan import add_recording_arguments, read_recording
+from carousel_theory.fit_defaults import DEFAULT_TAU_MIN, DEFAULT_TAU_MIN_OCTAVES, LADDER, select_default_fit
+from carousel_theory.fit_diagnostics import FitNotice, fit_notices
 from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
+from carousel_theory.plots import plot_fit, short_title
 from carousel_theory.units import BIAS_INSTABILITY_FACTOR, bias_instability_from_allan_minimum
 
 #: Rows of the Table III-style summary: (key, label, unit, source of the value).
@@ -60,15 +64,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--model",
         type=_components,
-        default=("white", "rrw"),
         metavar="C[,C...]",
-        help=f"components from {', '.join(COMPONENTS)} (default white,rrw)",
+        help=f"components from {', '.join(COMPONENTS)} (default: per axis the first of "
+        + "; ".join(step.describe() for step in LADDER)
+        + " that the recording does not reject by its χ² test)",
     )
     parser.add_argument(
         "--flicker-d", type=float, help="fix the 1/f order d (default: fitted when flicker is used)"
     )
     parser.add_argument(
-        "--tau-min", type=float, help="smallest τ (s) in the fit (e.g. above the sensor's filter)"
+        "--tau-min",
+        type=float,
+        help="smallest τ (s) in the fit, above the sensor's internal filter (default: every τ, or "
+        f"{DEFAULT_TAU_MIN:g} s for the default model when it is rejected over every τ and the recording "
+        f"leaves {DEFAULT_TAU_MIN_OCTAVES} octave τ above it)",
     )
     parser.add_argument("--tau-max", type=float, help="largest τ (s) in the fit")
     parser.add_argument("--iterations", type=int, default=3, help="covariance re-evaluations (default 3)")
@@ -79,19 +88,21 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(handler=run)
 
 
-def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitResult]]:
+def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitResult], list[str]]:
+    """Read and fit one recording (the default model: :func:`select_default_fit`); the notes say which
+    model each axis needed."""
     recording = read_recording(path, args)
-    fits = fit_recording(
-        recording,
-        args.model,
-        tau_min=args.tau_min,
-        tau_max=args.tau_max,
-        label=f"fit {path.name}: axes",
-        flicker_d=args.flicker_d,
-        estimator=args.estimator,
-        iterations=args.iterations,
-    )
-    return recording, fits
+    common = {
+        "tau_min": args.tau_min,
+        "tau_max": args.tau_max,
+        "label": f"fit {path.name}: axes",
+        "estimator": args.estimator,
+        "iterations": args.iterations,
+    }
+    if args.model is None:
+        fits, notes = select_default_fit(recording, **common)
+        return recording, fits, notes
+    return recording, fit_recording(recording, args.model, flicker_d=args.flicker_d, **common), []
 
 
 def _measured_bias_instability(fit: FitResult) -> tuple[float, float, float, float]:
@@ -134,8 +145,8 @@ def _report_header(files: list[tuple[Any, dict[str, FitResult]]], args: argparse
         "",
         "# Noise model of the recordings",
         "",
-        f"Command: `carousel-theory fit {' '.join(str(path) for path in args.data)} "
-        f"--model {','.join(args.model)}"
+        f"Command: `carousel-theory fit {' '.join(str(path) for path in args.data)}"
+        + (f" --model {','.join(args.model)}" if args.model else "")
         + (f" --tau-min {args.tau_min:g}" if args.tau_min is not None else "")
         + (f" --tau-max {args.tau_max:g}" if args.tau_max is not None else "")
         + (f" --flicker-d {args.flicker_d:g}" if args.flicker_d is not None else "")
@@ -154,6 +165,24 @@ def _report_header(files: list[tuple[Any, dict[str, FitResult]]], args: argparse
     ]
 
 
+#: The printed keys that come from each fitted variance (shown as held at zero when it is).
+_DERIVED_KEYS = {
+    "white_variance": ("white_variance_at_1s", "angle_random_walk_deg_per_sqrt_h"),
+    "rrw_variance": ("rrw_variance_per_s", "rate_random_walk_deg_per_h_per_sqrt_h"),
+}
+
+
+def _held_keys(fit: FitResult) -> set[str]:
+    """Printed keys of the parameters held at zero (and the 1/f order d of a 1/f term held at zero)."""
+    held = {key for parameter in fit.at_bound for key in (parameter, *_DERIVED_KEYS.get(parameter, ()))}
+    return held | ({"flicker_d"} if "flicker_variance" in fit.at_bound else set())
+
+
+def _cell(fit: FitResult, key: str, value: tuple[float, float], held: str = "0 (held at zero)") -> str:
+    """``value ± error``, or ``held`` for a parameter held at zero (it has no standard error)."""
+    return held if key in _held_keys(fit) else _format(*value)
+
+
 def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.Namespace) -> list[str]:
     """Table III's and the field's rows, then the 1/f rows when fitted."""
     paper = {axis: fit.paper_units() for axis, fit in fits.items()}
@@ -162,24 +191,22 @@ def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.
     for table, rows in ((paper, PAPER_ROWS), (field, FIELD_ROWS)):
         for key, label, unit in rows:
             if all(key in table[a] for a in axes):
-                lines.append(_row(label, unit, [_format(*table[a][key]) for a in axes]))
-    if "flicker" in args.model:
-        lines.append(
-            _row(
-                "1/f σ_w² (eq. (3))",
-                "(rad/s)²",
-                [
-                    _format(fits[a].model.flicker_variance, fits[a].standard_errors["flicker_variance"])
-                    for a in axes
-                ],
-            )
-        )
-        if args.flicker_d is None:
+                lines.append(_row(label, unit, [_cell(fits[a], key, table[a][key]) for a in axes]))
+    for key, label, unit in (
+        ("flicker_variance", "1/f σ_w² (eq. (3))", "(rad/s)²"),
+        ("flicker_d", "1/f order d", "—"),
+    ):
+        if any(key in fits[a].standard_errors for a in axes):
             lines.append(
                 _row(
-                    "1/f order d",
-                    "—",
-                    [_format(fits[a].model.flicker_d, fits[a].standard_errors["flicker_d"]) for a in axes],
+                    label,
+                    unit,
+                    [
+                        _cell(fits[a], key, (getattr(fits[a].model, key), fits[a].standard_errors[key]))
+                        if key in fits[a].standard_errors
+                        else "—"
+                        for a in axes
+                    ],
                 )
             )
     return lines
@@ -208,22 +235,10 @@ def _data_rows(fits: dict[str, FitResult], axes: list[str]) -> list[str]:
 
 
 def _verdict_lines(fits: dict[str, FitResult], axes: list[str]) -> list[str]:
-    """Parameters at a bound, and the axes whose χ² says the model misfits (p < 0.01)."""
-    bounds = [f"{a}: {', '.join(fits[a].at_bound)}" for a in axes if fits[a].at_bound]
-    lines = ["", f"Parameters held at zero: {'; '.join(bounds)}." if bounds else "No parameter at a bound."]
-    misfits = [
-        f"{a} (p = {fits[a].p_value:.2g}; scale its standard errors by about "
-        f"{math.sqrt(fits[a].chi_square / fits[a].degrees_of_freedom):.2g})"
-        for a in axes
-        if fits[a].p_value < 0.01
-    ]
-    if misfits:
-        lines.append(
-            "The model does not explain every τ within the Allan variance's own uncertainty for "
-            + ", ".join(misfits)
-            + ": the standard errors above assume the model and are too small there."
-        )
-    return [*lines, ""]
+    """The notices of each axis (:func:`carousel_theory.fit_diagnostics.fit_notices`): model rejected,
+    terms held at zero with their likely cause, the ARW read-off."""
+    lines = [f"- {axis}: {notice.message}" for axis in axes for notice in fit_notices(fits[axis])]
+    return ["", *(lines or ["No notice: every axis accepts the model and no term is held at zero."]), ""]
 
 
 def _consistency_section(files: list[tuple[Any, dict[str, FitResult]]], axes: list[str]) -> list[str]:
@@ -264,18 +279,25 @@ def _missing_axes_note(files: list[tuple[Any, dict[str, FitResult]]], axes: list
     )
 
 
-def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argparse.Namespace) -> str:
-    """The Table III-style report: one table per recording and a run-to-run consistency table."""
+def markdown_report(
+    files: list[tuple[Any, dict[str, FitResult]]],
+    args: argparse.Namespace,
+    notes: list[list[str]] | None = None,
+) -> str:
+    """The Table III-style report: one table per recording and a run-to-run consistency table; ``notes``
+    (one list per recording) are printed under its heading."""
     lines = _report_header(files, args)
+    notes = notes or [[] for _ in files]
     axes = list(
         dict.fromkeys(name for _, fits in files for name in fits)
     )  # every axis of every run, in order
-    for recording, fits in files:
+    for (recording, fits), file_notes in zip(files, notes, strict=True):
         lines += [
             f"## {Path(recording.source).name}",
             "",
             f"{len(recording)} samples at {recording.sample_rate:g} Hz ({recording.duration / 3600:.3g} h).",
             "",
+            *(f"Note: {note}.\n" for note in file_notes),
             "| parameter | unit | " + " | ".join(fits) + " |",
             "|---|---|" + "---|" * len(fits),
         ]
@@ -294,10 +316,46 @@ def _check_fit_options(args: argparse.Namespace) -> None:
             raise ValueError(f"--{name.replace('_', '-')}={value!r}: must be a positive number of seconds")
     if args.tau_min is not None and args.tau_max is not None and args.tau_min >= args.tau_max:
         raise ValueError(f"--tau-min={args.tau_min!r}: must be below --tau-max={args.tau_max!r}")
-    if args.flicker_d is not None and "flicker" not in args.model:
+    if args.flicker_d is not None and "flicker" not in (args.model or ()):
         raise ValueError(
-            f"--flicker-d={args.flicker_d!r}: only with 'flicker' in --model (got {args.model!r})"
+            f"--flicker-d={args.flicker_d!r}: only with 'flicker' in --model (got "
+            f"{'the default model' if args.model is None else repr(args.model)})"
         )
+
+
+def _notice_lines(notices: list[FitNotice], indent: str) -> list[str]:
+    """Each notice wrapped at 110 columns under a ``note:`` or ``WARNING:`` tag."""
+    lines = []
+    for notice in notices:
+        tag = "WARNING: " if notice.kind == "model_rejected" else "note: "
+        lines += textwrap.wrap(
+            tag + notice.message, width=110, initial_indent=indent, subsequent_indent=indent + "  "
+        )
+    return lines
+
+
+def _json_document(
+    files: list[tuple[Any, dict[str, FitResult]]], notes: list[list[str]], output: OutputUnits
+) -> dict[str, Any]:
+    """The ``fit --json`` body: per file its source, notes, and per column the fit (Allan variances in
+    ``output``) with its notices."""
+    return {
+        "output_units": output.rate,
+        "files": [
+            {
+                "source": recording.source,
+                "notes": file_notes,
+                "columns": {
+                    name: {
+                        **fit_as_json(fit, output),
+                        "notices": [{"kind": n.kind, "message": n.message} for n in fit_notices(fit)],
+                    }
+                    for name, fit in fits.items()
+                },
+            }
+            for (recording, fits), file_notes in zip(files, notes, strict=True)
+        ],
+    }
 
 
 def run(args: argparse.Namespace) -> int:
@@ -305,35 +363,27 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--iterations={args.iterations!r}: must be >= 1")
     _check_fit_options(args)
     plan_outputs([(args.plot, "file"), (args.markdown, "file")], inputs=args.data)
-    files = [_fit_file(path, args) for path in args.data]
+    fitted = [_fit_file(path, args) for path in args.data]
+    files = [(recording, fits) for recording, fits, _ in fitted]
+    notes = [file_notes for _, _, file_notes in fitted]
     if args.plot:
         recording, fits = files[0]
-        models = {name: (fit.allan.tau, fit.model_avar) for name, fit in fits.items()}
-        plot_allan(
-            args.plot,
-            {name: fit.allan for name, fit in fits.items()},
-            f"{Path(recording.source).name}: Allan deviation and fitted {'+'.join(args.model)} model",
-            models,
-        )
+        title = short_title(recording.source, "Allan deviation and the fitted noise model")
+        plot_fit(args.plot, fits, title, output_units=args.output_units)
     if args.markdown:
-        write_text_atomic(args.markdown, markdown_report(files, args))
+        write_text_atomic(args.markdown, markdown_report(files, args, notes))
     if args.json:
-        document = {
-            "output_units": args.output_units,
-            "files": [
-                {
-                    "source": recording.source,
-                    "columns": {name: fit_as_json(fit, output_units(args)) for name, fit in fits.items()},
-                }
-                for recording, fits in files
-            ],
-        }
+        document = _json_document(files, notes, output_units(args))
         sys.stdout.write(strict_json(json_document("fit", document, FIT_NULL_REASONS)))
         return 0
-    for recording, fits in files:
+    for (recording, fits), file_notes in zip(files, notes, strict=True):
         print(f"{recording.source}: {len(recording)} samples at {recording.sample_rate:g} Hz")
+        for line in _notice_lines([FitNotice("default_range", note) for note in file_notes], "  "):
+            print(line)
         for name, fit in fits.items():
             print("\n".join(fit_lines(name, fit, output_units(args))))
+            for line in _notice_lines(fit_notices(fit), "    "):
+                print(line)
     for path in (args.plot, args.markdown):
         if path:
             print(f"wrote {path}")

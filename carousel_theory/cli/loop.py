@@ -158,6 +158,6 @@ def run(args: argparse.Namespace) -> int:
         write_text_atomic(args.json, strict_json(document))
         print(f"wrote {args.json}")
     if args.report is not None:
-        written = write_report(result, args.report)
+        written = write_report(result, args.report, output_units=args.output_units)
         print(f"wrote {', '.join(written)} to {args.report}")
     return 0

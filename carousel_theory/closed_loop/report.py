@@ -12,9 +12,11 @@ from scipy import stats
 from carousel_theory.closed_loop.detection import json_value
 from carousel_theory.closed_loop.evaluation import BAND_EXPECTED_EXCEEDANCE, BAND_SIGMA, BinSeries, Evaluation
 from carousel_theory.closed_loop.result import LoopResult, Step
-from carousel_theory.output_files import atomic_output, write_text_atomic
+from carousel_theory.output_files import write_text_atomic
+from carousel_theory.plots import pyplot, save_figure, short_title, unit_label
+from carousel_theory.units import from_rad_per_s
 
-__all__ = ["render_summary", "write_report"]
+__all__ = ["allan_report_figure", "bins_report_figure", "render_summary", "write_report"]
 
 
 def _number(value: Any) -> str:
@@ -151,78 +153,117 @@ def render_summary(result: LoopResult, plots: Sequence[str] = ()) -> str:
     return "\n".join(lines)
 
 
-def _plot_allan(plot: Any, axis: str, before: Evaluation, after: Evaluation) -> None:
-    for label, evaluation, style in (("before", before, "--"), ("after", after, "-")):
-        fit = evaluation.view.fits[axis]
-        if label == "after":
-            low = fit.observed * fit.edf / stats.chi2.ppf(0.975, fit.edf)
-            high = fit.observed * fit.edf / stats.chi2.ppf(0.025, fit.edf)
-            plot.fill_between(fit.tau, np.sqrt(low), np.sqrt(high), color="0.85", label="95 % interval")
-            plot.loglog(fit.tau, np.sqrt(fit.observed), "k.", label="measured (after removal)")
-        plot.loglog(fit.tau, np.sqrt(fit.model), style, label=f"model {label}")
+def _plot_allan(
+    plot: Any, axis: str, before: Evaluation, after: Evaluation, output_units: str = "rad/s"
+) -> None:
+    """One axis's panel: the Allan deviation as recorded and after removal, its 95 % band, the models."""
+
+    def deviation(avar: Any) -> np.ndarray:
+        return from_rad_per_s(np.sqrt(avar), output_units)
+
+    fit = after.view.fits[axis]
+    low = fit.observed * fit.edf / stats.chi2.ppf(0.975, fit.edf)
+    high = fit.observed * fit.edf / stats.chi2.ppf(0.025, fit.edf)
+    plot.fill_between(fit.tau, deviation(low), deviation(high), color="0.85", label="95 % interval (after)")
     recorded = before.view.fits[axis]
-    plot.loglog(recorded.tau, np.sqrt(recorded.observed), "x", color="0.5", label="measured (as recorded)")
-    plot.set_xlabel("τ (s)")
-    plot.set_ylabel("Allan deviation (rad/s)")
-    plot.set_title(axis)
-    plot.legend(fontsize=7)
+    plot.loglog(recorded.tau, deviation(recorded.observed), "x", color="0.45", label="measured (as recorded)")
+    plot.loglog(fit.tau, deviation(fit.observed), "k.", ms=6, label="measured (effects removed)")
+    plot.loglog(fit.tau, deviation(fit.model), "-", color="C0", lw=1.6, label="model after")
+    plot.loglog(recorded.tau, deviation(recorded.model), "--", color="C3", lw=1.2, label="model before")
+    plot.set_xlabel("averaging time τ (s)")
+    plot.set_ylabel(f"Allan deviation ({unit_label(output_units)})")
+    plot.set_title(axis, fontsize=10)
+    plot.grid(True, which="major", alpha=0.35)
 
 
-def _plot_bins(plot: Any, before: BinSeries, after: BinSeries, colour: str, label: str) -> None:
-    plot.plot(before.time, before.values, color="0.6", lw=0.6, label="as recorded")
-    plot.plot(after.time, after.values, color="k", lw=0.6, label="effects removed")
-    for bins, style, name in ((before, "--", "±2σ before"), (after, "-", "±2σ after")):
-        band = BAND_SIGMA * np.sqrt(bins.variance)
-        plot.plot(bins.time, band, colour + style, lw=0.8, label=name)
-        plot.plot(bins.time, -band, colour + style, lw=0.8)
-    plot.set_ylabel(label)
-    plot.legend(fontsize=7, loc="upper right")
+def _plot_bins(
+    plot: Any, before: BinSeries, after: BinSeries, title: str, output_units: str = "rad/s"
+) -> None:
+    """One panel of TIM 2014 Fig. 7: the bins with the effects removed (solid grey, as in the figure) over
+    the bins as recorded (orange, seen where an effect was removed), and the ±2σ band predicted by the
+    model after (dashed black, as in the figure) and before (dotted red)."""
+    plot.plot(
+        before.time, from_rad_per_s(before.values, output_units), color="C1", lw=0.8, label="as recorded"
+    )
+    plot.plot(
+        after.time, from_rad_per_s(after.values, output_units), color="0.35", lw=0.6, label="effects removed"
+    )
+    for bins, style, colour, name in (
+        (before, ":", "C3", "±2σ, model before"),
+        (after, "--", "k", "±2σ, model after"),
+    ):
+        band = from_rad_per_s(BAND_SIGMA * np.sqrt(bins.variance), output_units)
+        plot.plot(bins.time, band, style, color=colour, lw=1.0, label=name)
+        plot.plot(bins.time, -band, style, color=colour, lw=1.0)
+    plot.set_ylabel(f"rate ({unit_label(output_units)})")
+    plot.set_title(title, fontsize=9, loc="left")
+    plot.grid(True, alpha=0.3)
+
+
+def allan_report_figure(result: LoopResult, output_units: str = "rad/s") -> Any:
+    """The Allan deviation of every axis before and after the loop, one panel per axis, one legend below."""
+    before, after = result.evaluation_before, result.evaluation_after
+    assert before is not None and after is not None
+    figure, grid = pyplot().subplots(
+        1, len(result.axes), figsize=(5.2 * len(result.axes), 4.6), squeeze=False, layout="constrained"
+    )
+    for plot, axis in zip(grid[0], result.axes, strict=True):
+        _plot_allan(plot, axis, before, after, output_units)
+    figure.suptitle(short_title(result.source, "Allan deviation before and after the loop"), fontsize=10)
+    figure.legend(*grid[0][0].get_legend_handles_labels(), loc="outside lower center", ncols=5, fontsize=8)
+    return figure
+
+
+def bins_report_figure(result: LoopResult, output_units: str = "rad/s") -> Any:
+    """The averaged bins of each axis and the carouselled estimate with their ±2σ bands, stacked as
+    (a), (b), (c) like TIM 2014 Fig. 7, one legend below the panels."""
+    before, after = result.evaluation_before, result.evaluation_after
+    assert before is not None and after is not None
+    panels = [(before.averaged[a], after.averaged[a], f"averaged {a}-gyro") for a in result.axes]
+    if before.carouselled is not None and after.carouselled is not None and len(after.carouselled.values):
+        panels.append((before.carouselled, after.carouselled, "carouselled estimate"))
+    figure, grid = pyplot().subplots(
+        len(panels),
+        1,
+        figsize=(10, 2.4 * len(panels) + 0.8),
+        squeeze=False,
+        sharex=True,
+        layout="constrained",
+    )
+    for index, (plot, (old, new, name)) in enumerate(zip(grid[:, 0], panels, strict=True)):
+        _plot_bins(plot, old, new, f"({chr(ord('a') + index)}) {name}", output_units)
+    grid[-1][0].set_xlabel("time (s)")
+    figure.suptitle(
+        short_title(
+            result.source,
+            f"averaged and carouselled bins with 2σ intervals, N = {result.samples_per_revolution} "
+            "(TIM 2014 Fig. 7)",
+        ),
+        fontsize=10,
+    )
+    figure.legend(*grid[0][0].get_legend_handles_labels(), loc="outside lower center", ncols=4, fontsize=8)
+    return figure
 
 
 #: The files :func:`write_report` writes into its folder.
 REPORT_FILES = ("allan_deviation.png", "bins.png", "summary.md")
 
 
-def write_report(result: LoopResult, directory: Any) -> list[str]:
-    """Write ``summary.md`` and the plots (matplotlib, Agg backend, imported here) into ``directory``.
+def write_report(result: LoopResult, directory: Any, output_units: str = "rad/s") -> list[str]:
+    """Write ``summary.md`` and the plots (matplotlib, Agg backend, imported when called) into ``directory``.
 
-    Plots: the Allan deviation with its 95 % intervals and the model before/after for each axis; the
-    averaged bins of each axis and the carouselled bins with the ±2σ bands of the model before and after
-    (as TIM 2014 Fig. 7). Returns the file names written.
+    Plots (rates in ``output_units``): the Allan deviation with its 95 % intervals and the model
+    before/after for each axis (:func:`allan_report_figure`); the averaged bins of each axis and the
+    carouselled bins with the ±2σ bands of the model before and after, as TIM 2014 Fig. 7
+    (:func:`bins_report_figure`). Returns the file names written.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    unit_label(output_units)
     directory = Path(directory)
     if directory.exists() and not directory.is_dir():
         raise ValueError(f"report directory {directory}: exists and is not a directory")
     directory.mkdir(parents=True, exist_ok=True)
-    before, after = result.evaluation_before, result.evaluation_after
-    assert before is not None and after is not None
-    figure, grid = plt.subplots(1, len(result.axes), figsize=(6 * len(result.axes), 4.5), squeeze=False)
-    for plot, axis in zip(grid[0], result.axes, strict=True):
-        _plot_allan(plot, axis, before, after)
-    figure.tight_layout()
-    with atomic_output(directory / "allan_deviation.png") as temporary:
-        figure.savefig(temporary, dpi=110, format="png")
-    plt.close(figure)
-    carousel = (
-        before.carouselled is not None and after.carouselled is not None and len(after.carouselled.values)
-    )
-    rows = len(result.axes) + (1 if carousel else 0)
-    figure, grid = plt.subplots(rows, 1, figsize=(9, 2.6 * rows), squeeze=False)
-    for row, axis in enumerate(result.axes):
-        _plot_bins(grid[row][0], before.averaged[axis], after.averaged[axis], "b", f"averaged {axis} (rad/s)")
-    if carousel:
-        assert before.carouselled is not None and after.carouselled is not None
-        _plot_bins(grid[-1][0], before.carouselled, after.carouselled, "r", "carouselled (rad/s)")
-    grid[-1][0].set_xlabel("time (s)")
-    figure.tight_layout()
-    with atomic_output(directory / "bins.png") as temporary:
-        figure.savefig(temporary, dpi=110, format="png")
-    plt.close(figure)
+    save_figure(allan_report_figure(result, output_units), directory / "allan_deviation.png", dpi=110)
+    save_figure(bins_report_figure(result, output_units), directory / "bins.png", dpi=110)
     written = ["allan_deviation.png", "bins.png"]
     write_text_atomic(directory / "summary.md", render_summary(result, written))
     return [*written, "summary.md"]

@@ -1,0 +1,169 @@
+"""What a fitted noise model's numbers mean, in words: model rejection, terms at a bound, the ARW read-off.
+
+A :class:`carousel_theory.fitting.FitResult` carries the evidence; this module turns it into notices a
+user reads beside the numbers (``fit`` prints them on stdout and writes them into ``--json`` and
+``--markdown``):
+
+``model_rejected``
+    The GLS objective χ² of the fit exceeds its upper :data:`REJECTION_LEVEL` quantile on the fit's
+    degrees of freedom. The standard errors assume the model, so they are too small; √(χ²/ν) is the
+    usual scale factor (Birge ratio). What to try: a short-τ cut-off above the sensor's internal filter,
+    a 1/f or autoregressive (Gauss–Markov) term, or the closed loop, which looks for the missing effect.
+``term_at_bound``
+    A driving variance held at zero by the non-negativity constraint: its standard error is undefined
+    (the printed value is 0 with no error), and the notice names the likely cause and the remedy.
+``angle_random_walk_read_off``
+    The textbook read-off of the angle random walk, σ_A(τ)·√τ at the octave τ nearest 1 s (IEEE Std
+    952-1997 Annex C: the −1/2 line at τ = 1 s), differs from the fitted white noise by more than
+    :data:`READ_OFF_TOLERANCE` and by more than the Allan variance's own interval at that τ: the
+    read-off also counts every other term at that τ, and an internal filter bends the short-τ end of the
+    curve below the −1/2 line.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from carousel_theory.fitting import FitResult
+from carousel_theory.units import to_deg_per_sqrt_hour
+
+__all__ = [
+    "READ_OFF_TOLERANCE",
+    "REJECTION_LEVEL",
+    "FitNotice",
+    "angle_random_walk_read_off",
+    "bound_notices",
+    "fit_notices",
+    "read_off_notice",
+    "rejection_notice",
+]
+
+#: A fit whose χ² p-value is below this is reported as rejected.
+REJECTION_LEVEL = 0.01
+#: Relative difference between the fitted and the read-off angle random walk that is reported.
+READ_OFF_TOLERANCE = 0.05
+
+
+@dataclass(frozen=True)
+class FitNotice:
+    """One sentence-level finding about a fit: ``kind`` (see the module text) and the ``message``."""
+
+    kind: str
+    message: str
+
+
+def rejection_notice(fit: FitResult) -> FitNotice | None:
+    """The ``model_rejected`` notice when the fit's p-value is below :data:`REJECTION_LEVEL`, else None."""
+    if fit.degrees_of_freedom <= 0 or not fit.p_value < REJECTION_LEVEL:
+        return None
+    components = {name.removesuffix("_variance") for name in fit.parameters}
+    tries = []
+    if float(fit.allan.tau[fit.used][0]) < 1.0:
+        tries.append("a short-τ cut-off above the sensor's internal filter (--tau-min 1)")
+    if "flicker" not in components:
+        tries.append("a 1/f term (add 'flicker' to --model)")
+    if "ar" not in components:
+        tries.append("a Gauss–Markov (autoregressive) term (add 'ar')")
+    tries.append("`carousel-theory loop`, which looks for the missing effect")
+    scale = math.sqrt(fit.chi_square / fit.degrees_of_freedom)
+    message = (
+        f"the model is rejected by its own χ² test (χ² = {fit.chi_square:.3g} on {fit.degrees_of_freedom} "
+        f"degrees of freedom, p = {fit.p_value:.2g}): it does not explain the Allan variance within the "
+        "estimates' uncertainty, so every standard error above assumes a model that does not hold and is "
+        f"too small; multiply them by at least √(χ²/dof) = {scale:.3g}. Try " + "; ".join(tries) + "."
+    )
+    return FitNotice("model_rejected", message)
+
+
+def _bound_cause(fit: FitResult, term: str) -> str:
+    """Likely cause and remedy of ``term`` held at zero."""
+    tau_used = fit.allan.tau[fit.used]
+    if term == "white":
+        taker = (
+            f"the 1/f term (order d = {fit.model.flicker_d:.2f}, near white noise at small d)"
+            if fit.model.flicker_variance > 0
+            else "the other terms"
+        )
+        return (
+            "the short-τ end of the Allan deviation does not follow the white-noise slope −1/2 (an internal "
+            f"filter correlates neighbouring samples), and {taker} takes its place. Fit above the filter "
+            "with --tau-min (e.g. 1 s), or model the correlation with 'ar' instead of 'white'"
+        )
+    if term == "rrw":
+        return (
+            f"no +1/2 slope is resolved up to the longest fitted τ ({tau_used[-1]:.4g} s); read the 0 as "
+            "'below detection'. Drop 'rrw' from --model or use a longer recording"
+        )
+    if term == "flicker":
+        return "no flat part beyond the other terms is resolved. Drop 'flicker' from --model"
+    if term == "quantization":
+        return (
+            f"no −1 slope is resolved at the shortest fitted τ ({tau_used[0]:.4g} s). Drop 'quantization' "
+            "or lower --tau-min"
+        )
+    return "the short-τ correlation is not resolved in the fitted τ range. Drop 'ar' from --model"
+
+
+def bound_notices(fit: FitResult) -> list[FitNotice]:
+    """A ``term_at_bound`` notice for each driving variance held at zero."""
+    notices = []
+    for parameter in fit.at_bound:
+        term = "quantization" if parameter == "quantization_squared" else parameter.removesuffix("_variance")
+        notices.append(
+            FitNotice(
+                "term_at_bound",
+                f"{parameter} is held at zero, the bound of its range: its value 0 has no standard error "
+                "and the other terms' errors assume it absent. Likely cause: "
+                + _bound_cause(fit, term)
+                + ".",
+            )
+        )
+    return notices
+
+
+def angle_random_walk_read_off(fit: FitResult) -> tuple[float, float, float, float]:
+    """(τ, σ_A(τ)·√τ, its interval low, high) in °/√h at the octave τ of the data nearest 1 s (IEEE Std 952
+    Annex C read-off); the interval is the Allan variance's own at that τ."""
+    tau = np.asarray(fit.allan.tau)
+    nearest = int(np.argmin(np.abs(np.log(tau))))
+    at = float(tau[nearest])
+    low, value, high = (
+        to_deg_per_sqrt_hour(math.sqrt(float(array[nearest]) * at))
+        for array in (fit.allan.ci_low, fit.allan.avar, fit.allan.ci_high)
+    )
+    return at, value, low, high
+
+
+def read_off_notice(fit: FitResult) -> FitNotice | None:
+    """The ``angle_random_walk_read_off`` notice when the fitted ARW lies outside the read-off's interval
+    and differs from it by more than :data:`READ_OFF_TOLERANCE` (relative); None without a fitted
+    white-noise term."""
+    if "white_variance" not in fit.parameters or fit.model.white_variance <= 0:
+        return None
+    fitted = fit.model.angle_random_walk_deg_per_sqrt_hour()
+    tau, read, low, high = angle_random_walk_read_off(fit)
+    if low <= fitted <= high or abs(read - fitted) <= READ_OFF_TOLERANCE * fitted:
+        return None
+    first = float(fit.allan.tau[fit.used][0])
+    advice = (
+        f"fitting from τ = {first:.3g} s lets the bent short-τ end pull the white-noise level; fit above the "
+        "filter (--tau-min 1) to read it where the slope is −1/2"
+        if first < 1.0
+        else f"the fit separates the white noise from the other terms over τ ≥ {first:.3g} s"
+    )
+    return FitNotice(
+        "angle_random_walk_read_off",
+        f"the angle random walk of the fit, {fitted:.3g} °/√h, differs from the textbook read-off "
+        f"σ_A(τ)·√τ at τ = {tau:.3g} s, {read:.3g} °/√h: the read-off counts every term at that τ and "
+        "assumes the white-noise slope −1/2 holds there, while a sensor's internal filter bends the "
+        f"short-τ end of the curve; {advice}.",
+    )
+
+
+def fit_notices(fit: FitResult) -> list[FitNotice]:
+    """Every notice about ``fit``: rejection first, then terms at a bound, then the ARW read-off."""
+    notices = [rejection_notice(fit), *bound_notices(fit), read_off_notice(fit)]
+    return [notice for notice in notices if notice is not None]

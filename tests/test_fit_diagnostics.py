@@ -1,0 +1,89 @@
+"""Notices beside a fit's numbers (issue 12 point 2, issue 13 point 11): a rejected model says what that
+means and what to try, a term held at zero says so with its likely cause, and the fitted ARW is compared
+with the textbook 1-s read-off when a filter bends the short-τ end."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from carousel_theory.fit_diagnostics import (
+    READ_OFF_TOLERANCE,
+    angle_random_walk_read_off,
+    fit_notices,
+    read_off_notice,
+    rejection_notice,
+)
+from carousel_theory.fitting import fit_noise_model
+from carousel_theory.noise_model import NoiseModel
+from carousel_theory.simulate import sample_noise
+
+RATE = 100.0
+
+
+def filtered_sensor(samples: int = 100_000, seed: int = 3) -> np.ndarray:
+    """White noise through a 4-sample moving average (an internal filter) plus 1/f noise."""
+    rng = np.random.default_rng(seed)
+    filtered = np.convolve(6e-3 * rng.standard_normal(samples + 3), np.ones(4) / 4, mode="valid")
+    flicker = NoiseModel(sample_rate=RATE, flicker_variance=1e-9, flicker_d=0.5)
+    return filtered + sample_noise(flicker, samples, rng=rng)
+
+
+@pytest.fixture(scope="module")
+def sensor() -> np.ndarray:
+    return filtered_sensor()
+
+
+@pytest.fixture(scope="module")
+def white_rrw_all_tau(sensor):
+    return fit_noise_model(sensor, RATE, ("white", "rrw"))
+
+
+def test_issue13_white_held_at_zero_is_reported_with_cause_and_remedy(sensor):
+    fit = fit_noise_model(sensor, RATE, ("white", "rrw", "flicker"))
+    assert "white_variance" in fit.at_bound  # the failure of issue 13 point 11, reproduced
+    messages = [n.message for n in fit_notices(fit) if n.kind == "term_at_bound"]
+    white = next(m for m in messages if m.startswith("white_variance"))
+    assert "held at zero" in white and "no standard error" in white
+    assert "--tau-min" in white and "'ar'" in white and "1/f term (order d = " in white
+
+
+def test_rejected_model_says_what_it_means_and_what_to_try(white_rrw_all_tau):
+    fit = white_rrw_all_tau
+    assert fit.p_value < 0.01
+    notice = rejection_notice(fit)
+    assert notice is not None and notice.kind == "model_rejected"
+    scale = math.sqrt(fit.chi_square / fit.degrees_of_freedom)
+    assert f"√(χ²/dof) = {scale:.3g}" in notice.message
+    for advice in ("too small", "--tau-min 1", "'flicker'", "'ar'", "carousel-theory loop"):
+        assert advice in notice.message
+
+
+def test_arw_read_off_at_the_octave_tau_nearest_one_second(sensor, white_rrw_all_tau):
+    tau, value, low, high = angle_random_walk_read_off(white_rrw_all_tau)
+    assert tau == 1.28  # 128 samples at 100 Hz: the octave τ nearest 1 s
+    m = 128  # the overlapping Allan variance at m, written out
+    angle = np.concatenate(([0.0], np.cumsum(sensor))) / RATE
+    avar = np.mean((angle[2 * m :] - 2 * angle[m:-m] + angle[: -2 * m]) ** 2) / (2 * tau**2)
+    assert value == pytest.approx(math.sqrt(avar * tau) * 180 / math.pi * 60, rel=1e-9)
+    assert low < value < high
+
+
+def test_arw_read_off_notice_when_the_filter_bends_the_short_tau_end(white_rrw_all_tau):
+    notice = read_off_notice(white_rrw_all_tau)
+    assert notice is not None
+    fitted = white_rrw_all_tau.model.angle_random_walk_deg_per_sqrt_hour()
+    _, read, low, high = angle_random_walk_read_off(white_rrw_all_tau)
+    assert abs(read - fitted) > READ_OFF_TOLERANCE * fitted and not low <= fitted <= high
+    assert f"{fitted:.3g} °/√h" in notice.message and f"{read:.3g} °/√h" in notice.message
+    assert "internal filter" in notice.message and "--tau-min 1" in notice.message
+
+
+def test_a_model_that_holds_gives_no_notice():
+    model = NoiseModel(sample_rate=RATE, white_variance=1e-6, rrw_variance=1e-11)
+    y = sample_noise(model, 100_000, rng=np.random.default_rng(21))
+    fit = fit_noise_model(y, RATE, ("white", "rrw"))
+    assert fit.p_value >= 0.01 and not fit.at_bound
+    assert fit_notices(fit) == []
