@@ -51,6 +51,7 @@ __all__ = [
     "finite_fourth_sum",
     "flicker_allan_variance_closed",
     "flicker_fourth_sum",
+    "flicker_normalisation",
     "rising_factorial",
 ]
 
@@ -76,13 +77,20 @@ def rising_factorial(a: Any, step: float) -> np.ndarray:
     difference (a − ½) log(1 + step/a) + step log(a + step) − step + Σ_k c_k [(a + step)^{1−2k} − a^{1−2k}]
     (no difference of two large log Γ values; scipy's ``poch`` loses about 1e-11 near a = 10⁴)."""
     a = np.asarray(a, dtype=np.float64)
+    result = np.empty(a.shape)
     large = a >= _STIRLING_FROM
-    safe = np.where(large, a, _STIRLING_FROM)
-    shifted = safe + step
-    logarithm = (safe - 0.5) * np.log1p(step / safe) + step * np.log(shifted) - step
-    for k, coefficient in enumerate(_STIRLING, start=1):
-        logarithm += coefficient * (shifted ** (1 - 2 * k) - safe ** (1 - 2 * k))
-    return np.where(large, np.exp(logarithm), special.poch(np.where(large, 1.0, a), step))
+    if not np.all(large):
+        result[~large] = special.poch(a[~large], step)
+    base = a[large]
+    shifted = base + step
+    logarithm = (base - 0.5) * np.log1p(step / base) + step * np.log(shifted) - step
+    inverse_shifted, inverse_base = 1.0 / shifted, 1.0 / base
+    square_shifted, square_base = inverse_shifted**2, inverse_base**2
+    for coefficient in _STIRLING:  # c_k [(a + step)^{1−2k} − a^{1−2k}], the powers built by products
+        logarithm += coefficient * (inverse_shifted - inverse_base)
+        inverse_shifted, inverse_base = inverse_shifted * square_shifted, inverse_base * square_base
+    result[large] = np.exp(logarithm)
+    return result
 
 
 # The numeric evaluator: the SymPy factors, lambdified once; the rising factorial is the one above.
@@ -97,16 +105,42 @@ _NEAR_HALF = 0.1
 _SERIES_TERMS = 26
 
 
+def flicker_normalisation(d: float) -> float:
+    """C_d = Γ(3 − 2d)/(Γ(2 − d)Γ(d − 1)) of :data:`FLICKER_INCREMENT_AUTOCOVARIANCE` (negative)."""
+    return float(_normalisation_numeric(float(d)))
+
+
 def _log_gamma_slope(a: np.ndarray, step: float) -> np.ndarray:
-    """(log|Γ(a + step)| − log|Γ(a)|)/step by its Taylor series Σ ψ^{(r−1)}(a) step^{r−1}/r! (a ≥ ½,
-    |step| ≤ 0.1: the terms fall at least like (2|step|)^r/r); ψ(a) at step = 0."""
-    total = np.zeros_like(a)
-    power, factorial = 1.0, 1.0
-    for r in range(1, _SERIES_TERMS + 1):
-        factorial *= r
-        total += special.polygamma(r - 1, a) * (power / factorial)
-        power *= step
-    return total
+    """(log|Γ(a + step)| − log|Γ(a)|)/step for a ≥ ½, |step| ≤ 0.1, and ψ(a) at step = 0.
+
+    Below a = 16 the Taylor series Σ ψ^{(r−1)}(a) step^{r−1}/r! (terms fall at least like (2|step|)^r/r);
+    above, the Stirling difference of :func:`rising_factorial` divided by the step term by term, each
+    through log(1 + x)/x and (eˣ − 1)/x, x = step/a, so that no difference of large values is formed.
+    """
+    a = np.asarray(a, dtype=np.float64)
+    result = np.empty_like(a)
+    small = a < _STIRLING_FROM
+    if np.any(small):
+        total = np.zeros(int(np.count_nonzero(small)))
+        power, factorial = 1.0, 1.0
+        for r in range(1, _SERIES_TERMS + 1):
+            factorial *= r
+            total += special.polygamma(r - 1, a[small]) * (power / factorial)
+            power *= step
+        result[small] = total
+    large = a[~small]
+    ratio = step / large
+    log_step = np.log1p(ratio)
+    log_ratio = log_step / ratio if step else np.ones_like(large)
+    slope = (large - 0.5) / large * log_ratio + np.log(large + step) - 1.0
+    inverse, inverse_square = 1.0 / large, 1.0 / large**2
+    power = inverse * inverse  # a^{e − 1}, e = 1 − 2k
+    for k, coefficient in enumerate(_STIRLING, start=1):
+        exponent = 1 - 2 * k  # [(a + step)^e − a^e]/step = a^{e−1} · e · exprel(e log(1 + x)) · log(1 + x)/x
+        slope += coefficient * exponent * power * special.exprel(exponent * log_step) * log_ratio
+        power = power * inverse_square
+    result[~small] = slope
+    return result
 
 
 def _near_half_ratio(j: np.ndarray, d: float) -> np.ndarray:
@@ -137,13 +171,20 @@ def flicker_fourth_sum(x: Any, d: float) -> np.ndarray:
     )
 
 
-def finite_fourth_sum(gamma: np.ndarray, x: Any) -> np.ndarray:
-    """H(x) = Σ_{|k|<len(γ)} γ(|k|) R₃(x − k) for a finitely supported even γ (module text), at integers x."""
+def finite_fourth_sum(gamma: np.ndarray, x: Any, *, total: float | None = None) -> np.ndarray:
+    """H(x) = Σ_{|k|<len(γ)} γ(|k|) R₃(x − k) for a finitely supported even γ (module text), at integers x.
+
+    ``total`` = Σ_k γ(k) when it is known exactly (0 for the increments of a stationary process, whose
+    computed sum is only rounding, which the cubic would multiply by x³/6).
+    """
     points = np.asarray(x, dtype=np.int64)
     reach = len(gamma) - 1
     lags = np.arange(-reach, reach + 1)
     full = np.concatenate((gamma[:0:-1], gamma))
     moments = [float(np.dot(full, lags.astype(np.float64) ** r)) for r in range(4)]
+    moments[1] = moments[3] = 0.0  # γ is even
+    if total is not None:
+        moments[0] = float(total)
     value = points.astype(np.float64)
     # Σ_r (−1)^r M_r p^{(r)}(x)/r!, p(x) = (x+1)(x+2)(x+3)/6: p' = (3x² + 12x + 11)/6, p'' = x + 2, p''' = 1.
     cubic = (
@@ -155,9 +196,13 @@ def finite_fourth_sum(gamma: np.ndarray, x: Any) -> np.ndarray:
     near = np.abs(points) <= reach + 3
     result = np.where(points > reach - 3, cubic, 0.0)
     if np.any(near):
-        shifted = points[near][:, None] - lags[None, :]
-        ramp = np.where(shifted >= -3, (shifted + 1.0) * (shifted + 2.0) * (shifted + 3.0) / 6.0, 0.0)
-        result[near] = ramp @ full
+        # H = the fourth cumulative sum of γ from k = −reach (∇⁴H = γ, H = 0 below −reach): no large
+        # ramp values cancel.
+        table = np.concatenate((full, np.zeros(8)))
+        for _ in range(4):
+            table = np.cumsum(table)
+        index = points[near] + reach
+        result[near] = np.where(index >= 0, table[np.maximum(index, 0)], 0.0)
     return result
 
 

@@ -416,5 +416,6 @@ def term_allan_variance(
         return np.array(flicker_allan_variance_closed(float(flicker_d), tuple(m.tolist())))
     if term == "ar":  # O(T) per τ, T the AR reach: the fourth sum of the finite γ_z
         gamma = increment_autocovariance(term, _ar_lags(tuple(ar_coefficients)), flicker_d, ar_coefficients)
-        return allan_variance_from_fourth_sum(lambda x: finite_fourth_sum(gamma, x), m)
+        # Σ_k γ_z(k) = 0 exactly for the increments of a stationary process
+        return allan_variance_from_fourth_sum(lambda x: finite_fourth_sum(gamma, x, total=0.0), m)
     raise ValueError(f"term={term!r}: must be one of {TERMS}")

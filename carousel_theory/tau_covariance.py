@@ -54,6 +54,7 @@ import numpy as np
 import sympy as sp
 
 from carousel_theory import symbols
+from carousel_theory.lag_quadrature import LagModel, counted_square_sum, ramp_positions
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
 
 __all__ = [
@@ -109,16 +110,6 @@ class TauCovariance:
 # --- the exact integer engine ---------------------------------------------------------------------
 
 
-def _ramp_positions(m_i: int, m_j: int) -> list[tuple[int, int]]:
-    """(q, w) with W_ij(−δ) = Σ w R₃(q − δ): q = −p_αβ, merged where positions coincide."""
-    merged: dict[int, int] = {}
-    for alpha, w_alpha in enumerate(_WEIGHTS):
-        for beta, w_beta in enumerate(_WEIGHTS):
-            q = -(2 - 2 * m_i + alpha * m_i + beta * m_j)
-            merged[q] = merged.get(q, 0) + w_alpha * w_beta
-    return [(q, w) for q, w in sorted(merged.items()) if w]
-
-
 def _cross_values(ramps: list[tuple[int, int]], delta: int) -> tuple[int, int]:
     """(c_white, c_rrw) at δ for unit variances, exact integers."""
     white = rrw = 0
@@ -164,7 +155,7 @@ def _piece_sums(ramps: list[tuple[int, int]], start: int, stop: int, K_i: int, K
 @functools.lru_cache(maxsize=4096)
 def _finite_gram(m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[int, int, int, int, int, int]:
     """Exact Σ_δ N c_a c_b for the pairs WW, WR, RR, QQ, QW, QR of unit-variance finite terms."""
-    ramps = _ramp_positions(m_i, m_j)
+    ramps = ramp_positions(m_i, m_j)
     low = max(-(K_i - 1), -2 * m_j - 2)
     high = min(K_j - 1, max(q for q, _ in ramps) + 2)
     cuts = {low, high + 1, 0, K_j - K_i, -(K_i - 1), K_j}
@@ -314,61 +305,6 @@ def _lag_sum(
     return float(np.einsum("i,i,i->", counts, c, c)), bound
 
 
-def _pair_window(memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[int, int, int]:
-    """(first δ, last δ, reach) of the overlapping lag sum of one pair (as in :func:`_lag_sum`)."""
-    reach = _lag_window(memory.model, m_i, m_j)
-    return max(-(K_i - 1), -2 * m_j - reach), min(K_j - 1, 2 * m_i + reach), reach
-
-
-def _counted_square_sum(c: np.ndarray, first: int, K_i: int, K_j: int, ramp: np.ndarray) -> float:
-    """Σ_δ N_ij(δ) c(δ)² for δ = first, first + 1, …: N_ij is linear between its breaks 0 and K_j − K_i,
-    so each piece is N(s) Σ c² + slope Σ (δ − s) c² (no per-δ count array). einsum rather than np.dot:
-    a threaded BLAS dot stalls on a loaded machine and gains nothing on one vector."""
-    last = first + len(c)
-    breaks = sorted({first, last, *(b for b in (0, K_j - K_i) if first < b < last)})
-    total = 0.0
-    for start, stop in itertools.pairwise(breaks):
-        piece = c[start - first : stop - first]
-        count = _pair_count(start, K_i, K_j)
-        slope = _pair_count(start + 1, K_i, K_j) - count if stop - start > 1 else 0
-        total += count * float(np.einsum("i,i->", piece, piece))
-        if slope:
-            total += slope * float(np.einsum("i,i,i->", ramp[: stop - start], piece, piece))
-    return total
-
-
-def _column_lag_sums(memory: _LongMemory, sizes: list[int], terms: list[int]) -> list[tuple[float, float]]:
-    """(Σ N c², tail bound) of the overlapping lag sums of the pairs (i, j = last), sizes increasing.
-
-    Along octave steps the triangle doubles, B_{2m}² = B_m² (1 + x^m)², so
-    c_{2m,j}(δ) = c_{m,j}(δ) + 2 c_{m,j}(δ − m) + c_{m,j}(δ − 2m): three additions per lag instead of two
-    moving sums per pair. Other steps start afresh from A_j.
-    """
-    m_j, K_j = sizes[-1], terms[-1]
-    windows = [_pair_window(memory, m, m_j, K, K_j) for m, K in zip(sizes, terms, strict=True)]
-    top = max(high for _, high, _ in windows)
-    starts = [min(low for low, _, _ in windows)] * len(sizes)
-    for i in range(len(sizes) - 2, -1, -1):  # how far below each c_i must reach for the later doublings
-        starts[i] = starts[i + 1] - 2 * sizes[i] if sizes[i + 1] == 2 * sizes[i] else starts[-1]
-    ramp = np.arange(top - starts[0] + 1, dtype=np.float64)
-    results: list[tuple[float, float]] = []
-    values, first = np.zeros(0), 0
-    for i, (m_i, K_i) in enumerate(zip(sizes, terms, strict=True)):
-        if i > 0 and m_i == 2 * sizes[i - 1]:
-            m, length = sizes[i - 1], len(values)
-            doubled = np.multiply(values[m : length - m], 2.0)
-            doubled += values[2 * m :]
-            doubled += values[: length - 2 * m]
-            values, first = doubled, first + 2 * m
-        else:
-            values, first = memory.cross_covariance(m_i, m_j, starts[i], top), starts[i]
-        low, high, reach = windows[i]
-        total = _counted_square_sum(values[low - first : high - first + 1], low, K_i, K_j, ramp)
-        bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
-        results.append((total, bound))
-    return results
-
-
 # --- public ---------------------------------------------------------------------------------------
 
 
@@ -379,26 +315,23 @@ def _terms_count(sizes: np.ndarray, length: int, estimator: str) -> np.ndarray:
 def _covariance_matrix(
     model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
 ) -> tuple[np.ndarray, np.ndarray]:
-    """(Σ N c² / scale, tail bound / scale) for every pair of non-decreasing ``sizes``."""
+    """(Σ N c² / scale, error bound / scale) for every pair of non-decreasing ``sizes``."""
     terms = _terms_count(sizes, length, estimator)
     long_terms = any(name in model.terms() for name in ("flicker", "ar"))
-    memory = _LongMemory(model, sizes, length) if long_terms or estimator != "overlapping" else None
+    overlapping = estimator == "overlapping"
+    lag_model = LagModel.of(model) if long_terms and overlapping else None
+    memory = _LongMemory(model, sizes, length) if long_terms and not overlapping else None
     count = len(sizes)
     covariance, bound = np.empty((count, count)), np.zeros((count, count))
-    by_column = memory is not None and estimator == "overlapping" and bool(np.all(np.diff(sizes) > 0))
-    for j in range(count):  # column by column: A_j is prepared once per j
-        column = (
-            _column_lag_sums(memory, sizes[: j + 1].tolist(), terms[: j + 1].tolist())
-            if by_column and memory is not None
-            else None
-        )
+    for j in range(count):
         for i in range(j + 1):
             m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
-            if column is not None:
-                total, tail = column[i]
-            elif memory is None:
+            if lag_model is not None:
+                total, tail = counted_square_sum(lag_model, m_i, m_j, K_i, K_j)
+            elif memory is None and overlapping:
                 total, tail = _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
             else:
+                memory = memory if memory is not None else _LongMemory(model, sizes, length)
                 total, tail = _lag_sum(memory, m_i, m_j, K_i, K_j, estimator)
             scale = 2.0 * float(m_i) ** 2 * float(m_j) ** 2 * K_i * K_j
             covariance[i, j] = covariance[j, i] = total / scale
@@ -441,10 +374,14 @@ def allan_estimate_variance(
     sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
     terms = _terms_count(sizes, int(length), estimator)
     long_terms = any(name in model.terms() for name in ("flicker", "ar"))
-    memory = _LongMemory(model, sizes, int(length)) if long_terms or estimator != "overlapping" else None
+    overlapping = estimator == "overlapping"
+    lag_model = LagModel.of(model) if long_terms and overlapping else None
+    memory = _LongMemory(model, sizes, int(length)) if not overlapping else None
     result = np.empty(len(sizes))
     for i, (m, K) in enumerate(zip(sizes.tolist(), terms.tolist(), strict=True)):
-        if memory is None:
+        if lag_model is not None:
+            total = counted_square_sum(lag_model, m, m, K, K)[0]
+        elif memory is None:
             total = _finite_sum(model, m, m, K, K)
         else:
             total = _lag_sum(memory, m, m, K, K, estimator)[0]
