@@ -41,7 +41,7 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import special
@@ -62,9 +62,12 @@ GAUSS_POINTS = 12
 BLOCK_RATIO = 0.5
 #: Lags within this distance of a breakpoint (plus the AR reach) are summed one by one.
 EXACT_REACH = 32
-#: Beyond FAR support widths from the support, c comes from the Newton series of γ_z.
-FAR = 16
-_NEWTON_TERMS = 16
+#: Beyond FAR support widths from the support, c comes from the Newton series of γ_z (the nine-term sum
+#: of H would lose about FAR⁴ ulps there).
+FAR = 4
+_NEWTON_TERMS = 24
+#: Pairs whose support is at most this wide take c at integer lags from Σ_u W(u) γ_z(δ + u) directly.
+_DIRECT_WIDTH = 256
 
 
 @dataclass(frozen=True)
@@ -320,15 +323,43 @@ def _derivative_bounds(pair: _Pair, lag_model: LagModel, blocks: np.ndarray) -> 
 
 
 def _values(pair: _Pair, lag_model: LagModel, lags: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(c, bound on its error) at ``lags``: the nine-term sum of H, or the Newton series in the far tail."""
+    """(c, bound on its error) at ``lags``: the Newton series in the far tail; elsewhere the nine-term sum
+    of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u) (no cancellation)."""
     nearest = _far_arguments(pair, lags)
     width = max(2 * pair.m_i + 2 * pair.m_j - 4, 1)
-    far = (nearest >= FAR * width) & (nearest > lag_model.reach + 2) & bool(lag_model.flicker_variance)
+    far = (nearest >= FAR * width) & (nearest >= max(lag_model.reach + 8, _NEWTON_TERMS + 4))
+    far &= bool(lag_model.flicker_variance)
     values, errors = np.empty(len(lags)), np.zeros(len(lags))
-    values[~far] = pair.cross_covariance(lag_model, lags[~far])
+    near = ~far
+    # Integer lags, or any lag outside the support (where every δ + u keeps one sign and γ_z is analytic).
+    direct = near & ((lags == np.rint(lags)) | (nearest >= 1)) if width <= _DIRECT_WIDTH else None
+    direct = direct if lag_model.flicker_variance else None
+    if direct is not None and np.any(direct):
+        values[direct] = _direct_flicker(pair, lag_model, lags[direct])
+        values[direct] += pair.cross_covariance(replace(lag_model, flicker_variance=0.0), lags[direct])
+        near &= ~direct
+    values[near] = pair.cross_covariance(lag_model, lags[near])
     if np.any(far):
         values[far], errors[far] = _newton_series(pair, lag_model, nearest[far])
     return values, errors
+
+
+@functools.lru_cache(maxsize=256)
+def _window(m_i: int, m_j: int) -> np.ndarray:
+    """W(u) = Σ_k g_i[k] g_j[k + u], u = −(2m_i − 2) … 2m_j − 2."""
+    triangle_i = np.minimum(np.arange(1, 2 * m_i), np.arange(2 * m_i - 1, 0, -1)).astype(np.float64)
+    triangle_j = np.minimum(np.arange(1, 2 * m_j), np.arange(2 * m_j - 1, 0, -1)).astype(np.float64)
+    return np.convolve(triangle_i[::-1], triangle_j)
+
+
+def _direct_flicker(pair: _Pair, lag_model: LagModel, lags: np.ndarray) -> np.ndarray:
+    """σ_w² Σ_u W(u) γ_z(δ + u) at integer lags or outside the support, γ_z(x) = C_d/rising(|x| + d − 1,
+    3 − 2d) (even on the integers, analytic on either side of the support)."""
+    d, window = lag_model.flicker_d, _window(pair.m_i, pair.m_j)
+    offsets = np.arange(-(2 * pair.m_i - 2), 2 * pair.m_j - 1, dtype=np.float64)
+    arguments = np.abs(lags[:, None] + offsets[None, :])
+    gamma = flicker_normalisation(d) / rising_factorial(arguments + d - 1.0, 3.0 - 2.0 * d)
+    return lag_model.flicker_variance * (gamma @ window)
 
 
 def counted_square_sum(lag_model: LagModel, m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[float, float]:
