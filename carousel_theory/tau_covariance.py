@@ -232,11 +232,11 @@ class _LongMemory:
     """c_ij(δ) = Σ_k g_i[k] A_j(δ − k) with A_j = γ_z correlated with g_j once per j, and g_i,
     the triangle B_{m_i}⋆B_{m_i}, applied as two moving sums (cumulative sums), for A_j as for each pair."""
 
-    def __init__(self, model: NoiseModel, sizes: np.ndarray, length: int) -> None:
+    def __init__(self, model: NoiseModel, sizes: np.ndarray, length: int, *, every_lag: bool = False) -> None:
         self.model = model
         self.length = int(length)
         largest = int(np.max(sizes))
-        self.reach = {int(m): _lag_window(model, int(m), int(m)) for m in sizes}
+        self.reach = {int(m): length + 8 if every_lag else _lag_window(model, int(m), int(m)) for m in sizes}
         # Lags used: |δ| ≤ length + 2·largest in _prepare, and V = reach + 3 in the 1/f tail bound.
         widest = max(self.reach.values())
         span = min(8 * largest + widest + 8, max(self.length + 2 * largest + 2, widest + 4))
@@ -312,27 +312,62 @@ def _terms_count(sizes: np.ndarray, length: int, estimator: str) -> np.ndarray:
     return length - 2 * sizes + 1 if estimator == "overlapping" else length // sizes - 1
 
 
+#: Records up to this length sum the overlapping lag sums over every lag (O(n) per pair, exact); longer
+#: ones use :mod:`carousel_theory.lag_quadrature` (cost independent of n, proved bound).
+EVERY_LAG_LENGTH = 1 << 15
+
+
+def _every_lag_sum(memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int) -> float:
+    """Σ_δ N c² over every lag −(K_i − 1) … K_j − 1 of a short record (no truncation, no bound)."""
+    c = memory.cross_covariance(m_i, m_j, -(K_i - 1), K_j - 1)
+    deltas = np.arange(-(K_i - 1), K_j)
+    counts = np.minimum(K_i - 1, K_j - 1 - deltas) - np.maximum(0, -deltas) + 1
+    return float(np.einsum("i,i,i->", counts.astype(np.float64), c, c))
+
+
+def _pair_sum(
+    model: NoiseModel,
+    engine: LagModel | _LongMemory | None,
+    m_i: int,
+    m_j: int,
+    K_i: int,
+    K_j: int,
+    estimator: str,
+) -> tuple[float, float]:
+    """(Σ N c², bound on its error) of one pair by the engine chosen for the model and record."""
+    if isinstance(engine, LagModel):
+        return counted_square_sum(engine, m_i, m_j, K_i, K_j)
+    if engine is None:
+        return _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
+    if estimator == "overlapping":
+        return _every_lag_sum(engine, m_i, m_j, K_i, K_j), 0.0
+    return _lag_sum(engine, m_i, m_j, K_i, K_j, estimator)
+
+
+def _engine(
+    model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
+) -> LagModel | _LongMemory | None:
+    """None (white, RRW, quantization: exact integers), every lag (short records), or the quadrature."""
+    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
+    if estimator == "overlapping" and not long_terms:
+        return None
+    if estimator == "overlapping" and length > EVERY_LAG_LENGTH:
+        return LagModel.of(model)
+    return _LongMemory(model, sizes, length, every_lag=estimator == "overlapping")
+
+
 def _covariance_matrix(
     model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
 ) -> tuple[np.ndarray, np.ndarray]:
     """(Σ N c² / scale, error bound / scale) for every pair of non-decreasing ``sizes``."""
     terms = _terms_count(sizes, length, estimator)
-    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
-    overlapping = estimator == "overlapping"
-    lag_model = LagModel.of(model) if long_terms and overlapping else None
-    memory = _LongMemory(model, sizes, length) if long_terms and not overlapping else None
+    engine = _engine(model, sizes, length, estimator)
     count = len(sizes)
     covariance, bound = np.empty((count, count)), np.zeros((count, count))
     for j in range(count):
         for i in range(j + 1):
             m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
-            if lag_model is not None:
-                total, tail = counted_square_sum(lag_model, m_i, m_j, K_i, K_j)
-            elif memory is None and overlapping:
-                total, tail = _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
-            else:
-                memory = memory if memory is not None else _LongMemory(model, sizes, length)
-                total, tail = _lag_sum(memory, m_i, m_j, K_i, K_j, estimator)
+            total, tail = _pair_sum(model, engine, m_i, m_j, K_i, K_j, estimator)
             scale = 2.0 * float(m_i) ** 2 * float(m_j) ** 2 * K_i * K_j
             covariance[i, j] = covariance[j, i] = total / scale
             bound[i, j] = bound[j, i] = tail / scale
@@ -373,17 +408,8 @@ def allan_estimate_variance(
     """Var σ̂²(m) at each m (the diagonal of :func:`allan_estimate_covariance`, without the other pairs)."""
     sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
     terms = _terms_count(sizes, int(length), estimator)
-    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
-    overlapping = estimator == "overlapping"
-    lag_model = LagModel.of(model) if long_terms and overlapping else None
-    memory = _LongMemory(model, sizes, int(length)) if not overlapping else None
+    engine = _engine(model, np.sort(sizes), int(length), estimator)
     result = np.empty(len(sizes))
     for i, (m, K) in enumerate(zip(sizes.tolist(), terms.tolist(), strict=True)):
-        if lag_model is not None:
-            total = counted_square_sum(lag_model, m, m, K, K)[0]
-        elif memory is None:
-            total = _finite_sum(model, m, m, K, K)
-        else:
-            total = _lag_sum(memory, m, m, K, K, estimator)[0]
-        result[i] = total / (2.0 * float(m) ** 4 * K * K)
+        result[i] = _pair_sum(model, engine, m, m, K, K, estimator)[0] / (2.0 * float(m) ** 4 * K * K)
     return result
