@@ -73,9 +73,12 @@ _STIRLING_FROM = 16.0
 
 
 def rising_factorial(a: Any, step: float) -> np.ndarray:
-    """Γ(a + step)/Γ(a) to a few 1e-14 relative (the rounding of a logarithm of size step·log a): scipy's ``poch`` below a = 16, and above it the Stirling
-    difference (a − ½) log(1 + step/a) + step log(a + step) − step + Σ_k c_k [(a + step)^{1−2k} − a^{1−2k}]
-    (no difference of two large log Γ values; scipy's ``poch`` loses about 1e-11 near a = 10⁴)."""
+    """Γ(a + step)/Γ(a) to a few 1e-14 relative (the rounding of a logarithm of size step·log a).
+
+    scipy's ``poch`` below a = 16; above it the Stirling difference (a − ½) log(1 + step/a) +
+    step log(a + step) − step + Σ_k c_k [(a + step)^{1−2k} − a^{1−2k}], so that no difference of two
+    large log Γ values is formed (scipy's ``poch`` loses about 1e-11 near a = 10⁴).
+    """
     a = np.asarray(a, dtype=np.float64)
     result = np.empty(a.shape)
     large = a >= _STIRLING_FROM
@@ -125,7 +128,7 @@ def _log_gamma_slope(a: np.ndarray, step: float) -> np.ndarray:
     small = a < _STIRLING_FROM
     if np.any(small):
         total = np.zeros(int(np.count_nonzero(small)))
-        power, factorial = 1.0, 1.0
+        factorial, power = 1.0, 1.0
         for r in range(1, _SERIES_TERMS + 1):
             factorial *= r
             total += special.polygamma(r - 1, a[small]) * (power / factorial)
@@ -137,11 +140,11 @@ def _log_gamma_slope(a: np.ndarray, step: float) -> np.ndarray:
     log_ratio = log_step / ratio if step else np.ones_like(large)
     slope = (large - 0.5) / large * log_ratio + np.log(large + step) - 1.0
     inverse, inverse_square = 1.0 / large, 1.0 / large**2
-    power = inverse * inverse  # a^{e − 1}, e = 1 − 2k
+    powers = inverse * inverse  # a^{e − 1}, e = 1 − 2k
     for k, coefficient in enumerate(_STIRLING, start=1):
         exponent = 1 - 2 * k  # [(a + step)^e − a^e]/step = a^{e−1} · e · exprel(e log(1 + x)) · log(1 + x)/x
-        slope += coefficient * exponent * power * special.exprel(exponent * log_step) * log_ratio
-        power = power * inverse_square
+        slope += coefficient * exponent * powers * special.exprel(exponent * log_step) * log_ratio
+        powers = powers * inverse_square
     result[~small] = slope
     return result
 
