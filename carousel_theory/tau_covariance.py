@@ -24,20 +24,24 @@ Exact closed form (white, rate random walk, quantization; overlapping estimator)
     integers. The cost does not depend on n or m; the result is exact (Python integers), and for
     n ≥ 2(m_i + m_j) it is A_ij + B_ij n (cached per (m_i, m_j), so a loop that refits pays once).
 
-Exact finite sums (1/f, AR, and the non-overlapping estimator)
-    c_ij(δ) is computed on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is
-    correlated with the triangle g_j once per τ_j, and g_i = B_{m_i}⋆B_{m_i} is applied to that, each
-    as two moving sums (cumulative sums). The τ are summed in increasing order, column by column; along
-    an octave step B_{2m} = B_m (1 + x^m) gives c_{2m,j}(δ) = c_{m,j}(δ) + 2 c_{m,j}(δ − m) + c_{m,j}(δ − 2m),
-    three additions per lag. N_ij is linear between its breaks, so Σ N c² is two sums per piece.
+1/f and AR, overlapping estimator
+    Records of up to :data:`EVERY_LAG_LENGTH` samples: c_ij(δ) at every lag of the record by two moving
+    sums (below) and Σ N c² exactly, with no truncation. Longer records:
+    :mod:`carousel_theory.lag_quadrature`, whose cost does not grow with n — exact lags near the breakpoints of c_ij, discrete Gauss blocks with a
+    proved error bound elsewhere (the 1/f part through the telescoped fourth sum of
+    :mod:`carousel_theory.increment_sums`), the 1/f far tail by its Newton series; its bound is
+    :attr:`TauCovariance.truncation_bound` (plus rounding, about 1e-11 relative).
+
+Non-overlapping estimator (1/f, AR)
+    c_ij(δ) on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is correlated with
+    the triangle g_j once per τ_j, and g_i = B_{m_i}⋆B_{m_i} is applied to that, each as two moving sums.
     T: for AR, the lag beyond which the geometric envelope is below
-    :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j).
-    The 1/f tail beyond the window is bounded, not dropped silently: for k ≥ 1, γ_z(k) < 0 and
-    |γ_z(k)| decreases, with |γ_z(k)| ≤ |γ_z(V)| ((V + 2 − d)/(k + 2 − d))^{3−2d} (from the ratio
-    (k − 2 + d)/(k + 1 − d) = 1 − (3 − 2d)/(k + 1 − d) ≤ exp(−(3 − 2d)/(k + 1 − d))), so
-    Σ_{k≥V} γ_z(k)² ≤ γ_z(V)² (1 + (V + 2 − d)/(5 − 4d)); with W ≥ 0 and Σ W = m_i² m_j², the neglected
-    part of Σ N c² is at most 2 K (m_i² m_j²)² Σ_{k≥V} γ_z(k)², V the first lag outside the window.
-    :attr:`TauCovariance.truncation_bound` reports it per entry (0 where the result is exact).
+    :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j). The 1/f
+    tail beyond the window is bounded: for k ≥ 1, γ_z(k) < 0 and |γ_z(k)| decreases, with
+    |γ_z(k)| ≤ |γ_z(V)| ((V + 2 − d)/(k + 2 − d))^{3−2d}, so
+    Σ_{k≥V} γ_z(k)² ≤ γ_z(V)² (1 + (V + 2 − d)/(5 − 4d));
+    with W ≥ 0 and Σ W = m_i² m_j², the neglected part of Σ N c² is at most 2 K (m_i² m_j²)² Σ_{k≥V} γ_z(k)²,
+    V the first lag outside the window; :attr:`TauCovariance.truncation_bound` reports it.
 
 Equivalent degrees of freedom (Satterthwaite) come from the diagonal: ν_i = 2 E[σ̂²_i]² / Var σ̂²_i.
 """
@@ -379,9 +383,10 @@ def allan_estimate_covariance(
 ) -> TauCovariance:
     """Covariance of the Allan variance estimates at m = ``tau_samples`` in a record of ``length`` samples.
 
-    Exact in closed form for white, rate random walk and quantization with the overlapping estimator;
-    exact finite lag sums for AR and the non-overlapping estimator; 1/f by a finite lag sum with the
-    tail bounded (module text). For the non-overlapping estimator every m must divide the larger ones.
+    Exact in closed form for white, rate random walk and quantization with the overlapping estimator; 1/f
+    and AR summed over every lag of a short record, by the lag quadrature (proved bound) of a long one,
+    and by a finite lag sum with the 1/f tail bounded for the non-overlapping estimator (module text).
+    For the non-overlapping estimator every m must divide the larger ones.
     """
     sizes = np.asarray(tau_samples, dtype=np.int64)
     if estimator not in ("overlapping", "non-overlapping"):
