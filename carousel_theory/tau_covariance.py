@@ -28,9 +28,10 @@ Exact closed form (white, rate random walk, quantization; overlapping estimator)
     Records of up to :data:`EVERY_LAG_LENGTH` samples: c_ij(δ) at every lag of the record by two moving
     sums (below) and Σ N c² exactly, with no truncation. Longer records:
     :mod:`carousel_theory.lag_quadrature`, whose cost does not grow with n — exact lags near the
-    breakpoints of c_ij, discrete Gauss blocks with a proved error bound elsewhere (the 1/f part through the telescoped fourth sum of
-    :mod:`carousel_theory.increment_sums`), the 1/f far tail by its Newton series; its bound is
-    :attr:`TauCovariance.truncation_bound` (plus rounding, about 1e-11 relative).
+    breakpoints of c_ij, discrete Gauss blocks with a proved error bound elsewhere (the 1/f part
+    through the telescoped fourth sum of :mod:`carousel_theory.increment_sums`), the 1/f far tail by
+    its Newton series; its bound is :attr:`TauCovariance.truncation_bound` (plus rounding, about 1e-11
+    relative).
 
 Non-overlapping estimator (1/f, AR)
     c_ij(δ) on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is correlated with
