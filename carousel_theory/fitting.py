@@ -54,6 +54,7 @@ from carousel_theory._validation import (
     check_positive_real,
 )
 from carousel_theory.allan import AllanResult, allan_variance, check_tau_range, with_model_intervals
+from carousel_theory.increment_sums import rising_factorial
 from carousel_theory.noise_model import NoiseModel, term_allan_variance
 from carousel_theory.progress import progress
 from carousel_theory.tau_covariance import allan_estimate_covariance
@@ -550,7 +551,6 @@ def _bias_variance(model: NoiseModel, length: int) -> float:
     quantization (a white angle error differenced into the rate) adds 2 f_s² Q²/n², and the AR term
     its long-run variance /n (the leading term; the end correction is O(1/n²))."""
     from carousel_theory.formulas import formula
-    from carousel_theory.propagation import flicker_averaged_bin_variance
 
     n = float(length)
     variance = model.white_variance * float(formula("white_average_var").numeric(N=length))
@@ -558,8 +558,20 @@ def _bias_variance(model: NoiseModel, length: int) -> float:
     variance += 2.0 * (model.sample_rate * model.quantization) ** 2 / n**2
     variance += model.long_run_ar_variance / n if model.ar_variance else 0.0
     if model.flicker_variance:
-        variance += model.flicker_variance * flicker_averaged_bin_variance(model.flicker_d, length, 1)
+        variance += model.flicker_variance * _flicker_mean_variance(float(model.flicker_d), length)
     return variance
+
+
+def _flicker_mean_variance(d: float, length: int) -> float:
+    """Var ȳ of N = ``length`` samples of the 1/f process of TIM 2014 eq. (3) at σ_w² = 1:
+    N⁻² Σ_{j<N} Ψ_j² (:func:`carousel_theory.propagation.flicker_averaged_bin_variance` at k = 1) with
+    the partial sums Ψ_j = ψ_0 + … + ψ_j = Γ(j + 1 + d)/(Γ(1 + d) Γ(j + 1)) in closed form (the
+    coefficients of (1 − B)^{−d−1}), so one O(N) pass without a convolution."""
+    total, chunk = 0.0, 1 << 20
+    for start in range(0, length, chunk):
+        partial = rising_factorial(np.arange(start + 1, min(start + chunk, length) + 1, dtype=np.float64), d)
+        total += float(np.einsum("i,i->", partial, partial))
+    return total / (math.gamma(1.0 + d) ** 2 * float(length) ** 2)
 
 
 def fit_observed(

@@ -25,7 +25,9 @@ Allan variance (m samples per cluster, τ = mΔt)
     [D(|m + j|) − D(|j|)], with D(h) = E(y_{t+h} − y_t)² = Σ_{|k|<h} (h − |k|) γ_z(k) the variogram; the
     Allan variance is Var d/(2m²). White, rate random walk and quantization have the closed forms
     σ_WN²/m, σ_q²(2m² + 1)/(6m), 3Q²/τ² (SymPy, derived in ``derivations/allan_variance_models.md`` and
-    lambdified once); 1/f and AR are the exact finite sum above, O(m) per τ, with no truncation.
+    lambdified once); 1/f and AR come from a fourth sum H of γ_z (∇⁴H = γ_z), in closed form for 1/f
+    (telescoping Gamma ratios) and finite for AR, O(1) per τ (:mod:`carousel_theory.increment_sums`);
+    the finite variogram sum above, O(m) per τ, stays as :func:`allan_variance_from_increments`.
 
 Public API
     :class:`NoiseModel` (the dataclass), :func:`increment_autocovariance`, :func:`spectral_density`,
@@ -45,6 +47,11 @@ from scipy import linalg
 
 from carousel_theory import symbols, units
 from carousel_theory._validation import check_fractional_order, check_positive_real, check_real
+from carousel_theory.increment_sums import (
+    allan_variance_from_fourth_sum,
+    finite_fourth_sum,
+    flicker_allan_variance_closed,
+)
 
 __all__ = [
     "QUANTIZATION_ALLAN_VARIANCE",
@@ -294,6 +301,14 @@ def ar_autocovariance(coefficients: tuple[float, ...], lags: int) -> np.ndarray:
     return _frozen(gamma[:lags])
 
 
+@functools.lru_cache(maxsize=64)
+def _ar_lags(coefficients: tuple[float, ...]) -> int:
+    """Lags of γ_z that carry the AR term: up to where its envelope is below ``AR_TRUNCATION``, plus 2."""
+    rho = _slowest_root(tuple(float(c) for c in coefficients))
+    reach = 0 if rho == 0 else int(math.log(AR_TRUNCATION) / math.log(rho)) + 1
+    return len(coefficients) + reach + 3
+
+
 def _frozen(array: np.ndarray) -> np.ndarray:
     array.setflags(write=False)
     return array
@@ -386,8 +401,9 @@ def term_allan_variance(
 ) -> np.ndarray:
     """Exact Allan variance of one term (unit driving variance; quantization with f_s Q = 1) at m = sizes.
 
-    White, rate random walk and quantization from the SymPy closed forms; 1/f and AR by the exact finite
-    variogram sum of the module text, O(m) per τ.
+    White, rate random walk and quantization from the SymPy closed forms; 1/f from the closed-form fourth
+    sum of its increment autocovariance and AR from the fourth sum of its finite γ_z
+    (:mod:`carousel_theory.increment_sums`), O(1) per τ.
     """
     m = np.atleast_1d(np.asarray(sizes, dtype=np.int64))
     if term == "white":
@@ -396,8 +412,10 @@ def term_allan_variance(
         return np.asarray(_rrw_numeric(1.0, m.astype(np.float64)), dtype=np.float64)
     if term == "quantization":  # Q = Δt: f_s Q = 1
         return np.asarray(_quantization_numeric(1.0, m.astype(np.float64), 1.0), dtype=np.float64)
-    if term in ("flicker", "ar"):
-        lags = 2 * int(np.max(m))
-        gamma = increment_autocovariance(term, lags, flicker_d, ar_coefficients)
-        return allan_variance_from_increments(gamma, m)
+    if term == "flicker":  # O(1) per τ: the telescoped fourth sum of the Gamma ratio
+        return np.array(flicker_allan_variance_closed(float(flicker_d), tuple(m.tolist())))
+    if term == "ar":  # O(T) per τ, T the AR reach: the fourth sum of the finite γ_z
+        gamma = increment_autocovariance(term, _ar_lags(tuple(ar_coefficients)), flicker_d, ar_coefficients)
+        # Σ_k γ_z(k) = 0 exactly for the increments of a stationary process
+        return allan_variance_from_fourth_sum(lambda x: finite_fourth_sum(gamma, x, total=0.0), m)
     raise ValueError(f"term={term!r}: must be one of {TERMS}")

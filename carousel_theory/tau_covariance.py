@@ -24,20 +24,25 @@ Exact closed form (white, rate random walk, quantization; overlapping estimator)
     integers. The cost does not depend on n or m; the result is exact (Python integers), and for
     n ≥ 2(m_i + m_j) it is A_ij + B_ij n (cached per (m_i, m_j), so a loop that refits pays once).
 
-Exact finite sums (1/f, AR, and the non-overlapping estimator)
-    c_ij(δ) is computed on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is
-    correlated with the triangle g_j once per τ_j, and g_i = B_{m_i}⋆B_{m_i} is applied to that, each
-    as two moving sums (cumulative sums). The τ are summed in increasing order, column by column; along
-    an octave step B_{2m} = B_m (1 + x^m) gives c_{2m,j}(δ) = c_{m,j}(δ) + 2 c_{m,j}(δ − m) + c_{m,j}(δ − 2m),
-    three additions per lag. N_ij is linear between its breaks, so Σ N c² is two sums per piece.
+1/f and AR, overlapping estimator
+    Records of up to :data:`EVERY_LAG_LENGTH` samples: c_ij(δ) at every lag of the record by two moving
+    sums (below) and Σ N c² exactly, with no truncation. Longer records:
+    :mod:`carousel_theory.lag_quadrature`, whose cost does not grow with n — exact lags near the
+    breakpoints of c_ij, discrete Gauss blocks with a proved error bound elsewhere (the 1/f part
+    through the telescoped fourth sum of :mod:`carousel_theory.increment_sums`), the 1/f far tail by
+    its Newton series; its bound is :attr:`TauCovariance.truncation_bound` (plus rounding, about 1e-11
+    relative).
+
+Non-overlapping estimator (1/f, AR)
+    c_ij(δ) on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is correlated with
+    the triangle g_j once per τ_j, and g_i = B_{m_i}⋆B_{m_i} is applied to that, each as two moving sums.
     T: for AR, the lag beyond which the geometric envelope is below
-    :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j).
-    The 1/f tail beyond the window is bounded, not dropped silently: for k ≥ 1, γ_z(k) < 0 and
-    |γ_z(k)| decreases, with |γ_z(k)| ≤ |γ_z(V)| ((V + 2 − d)/(k + 2 − d))^{3−2d} (from the ratio
-    (k − 2 + d)/(k + 1 − d) = 1 − (3 − 2d)/(k + 1 − d) ≤ exp(−(3 − 2d)/(k + 1 − d))), so
-    Σ_{k≥V} γ_z(k)² ≤ γ_z(V)² (1 + (V + 2 − d)/(5 − 4d)); with W ≥ 0 and Σ W = m_i² m_j², the neglected
-    part of Σ N c² is at most 2 K (m_i² m_j²)² Σ_{k≥V} γ_z(k)², V the first lag outside the window.
-    :attr:`TauCovariance.truncation_bound` reports it per entry (0 where the result is exact).
+    :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j). The 1/f
+    tail beyond the window is bounded: for k ≥ 1, γ_z(k) < 0 and |γ_z(k)| decreases, with
+    |γ_z(k)| ≤ |γ_z(V)| ((V + 2 − d)/(k + 2 − d))^{3−2d}, so
+    Σ_{k≥V} γ_z(k)² ≤ γ_z(V)² (1 + (V + 2 − d)/(5 − 4d));
+    with W ≥ 0 and Σ W = m_i² m_j², the neglected part of Σ N c² is at most 2 K (m_i² m_j²)² Σ_{k≥V} γ_z(k)²,
+    V the first lag outside the window; :attr:`TauCovariance.truncation_bound` reports it.
 
 Equivalent degrees of freedom (Satterthwaite) come from the diagonal: ν_i = 2 E[σ̂²_i]² / Var σ̂²_i.
 """
@@ -54,6 +59,7 @@ import numpy as np
 import sympy as sp
 
 from carousel_theory import symbols
+from carousel_theory.lag_quadrature import LagModel, counted_square_sum, ramp_positions
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
 
 __all__ = [
@@ -109,16 +115,6 @@ class TauCovariance:
 # --- the exact integer engine ---------------------------------------------------------------------
 
 
-def _ramp_positions(m_i: int, m_j: int) -> list[tuple[int, int]]:
-    """(q, w) with W_ij(−δ) = Σ w R₃(q − δ): q = −p_αβ, merged where positions coincide."""
-    merged: dict[int, int] = {}
-    for alpha, w_alpha in enumerate(_WEIGHTS):
-        for beta, w_beta in enumerate(_WEIGHTS):
-            q = -(2 - 2 * m_i + alpha * m_i + beta * m_j)
-            merged[q] = merged.get(q, 0) + w_alpha * w_beta
-    return [(q, w) for q, w in sorted(merged.items()) if w]
-
-
 def _cross_values(ramps: list[tuple[int, int]], delta: int) -> tuple[int, int]:
     """(c_white, c_rrw) at δ for unit variances, exact integers."""
     white = rrw = 0
@@ -164,7 +160,7 @@ def _piece_sums(ramps: list[tuple[int, int]], start: int, stop: int, K_i: int, K
 @functools.lru_cache(maxsize=4096)
 def _finite_gram(m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[int, int, int, int, int, int]:
     """Exact Σ_δ N c_a c_b for the pairs WW, WR, RR, QQ, QW, QR of unit-variance finite terms."""
-    ramps = _ramp_positions(m_i, m_j)
+    ramps = ramp_positions(m_i, m_j)
     low = max(-(K_i - 1), -2 * m_j - 2)
     high = min(K_j - 1, max(q for q, _ in ramps) + 2)
     cuts = {low, high + 1, 0, K_j - K_i, -(K_i - 1), K_j}
@@ -241,11 +237,11 @@ class _LongMemory:
     """c_ij(δ) = Σ_k g_i[k] A_j(δ − k) with A_j = γ_z correlated with g_j once per j, and g_i,
     the triangle B_{m_i}⋆B_{m_i}, applied as two moving sums (cumulative sums), for A_j as for each pair."""
 
-    def __init__(self, model: NoiseModel, sizes: np.ndarray, length: int) -> None:
+    def __init__(self, model: NoiseModel, sizes: np.ndarray, length: int, *, every_lag: bool = False) -> None:
         self.model = model
         self.length = int(length)
         largest = int(np.max(sizes))
-        self.reach = {int(m): _lag_window(model, int(m), int(m)) for m in sizes}
+        self.reach = {int(m): length + 8 if every_lag else _lag_window(model, int(m), int(m)) for m in sizes}
         # Lags used: |δ| ≤ length + 2·largest in _prepare, and V = reach + 3 in the 1/f tail bound.
         widest = max(self.reach.values())
         span = min(8 * largest + widest + 8, max(self.length + 2 * largest + 2, widest + 4))
@@ -314,61 +310,6 @@ def _lag_sum(
     return float(np.einsum("i,i,i->", counts, c, c)), bound
 
 
-def _pair_window(memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[int, int, int]:
-    """(first δ, last δ, reach) of the overlapping lag sum of one pair (as in :func:`_lag_sum`)."""
-    reach = _lag_window(memory.model, m_i, m_j)
-    return max(-(K_i - 1), -2 * m_j - reach), min(K_j - 1, 2 * m_i + reach), reach
-
-
-def _counted_square_sum(c: np.ndarray, first: int, K_i: int, K_j: int, ramp: np.ndarray) -> float:
-    """Σ_δ N_ij(δ) c(δ)² for δ = first, first + 1, …: N_ij is linear between its breaks 0 and K_j − K_i,
-    so each piece is N(s) Σ c² + slope Σ (δ − s) c² (no per-δ count array). einsum rather than np.dot:
-    a threaded BLAS dot stalls on a loaded machine and gains nothing on one vector."""
-    last = first + len(c)
-    breaks = sorted({first, last, *(b for b in (0, K_j - K_i) if first < b < last)})
-    total = 0.0
-    for start, stop in itertools.pairwise(breaks):
-        piece = c[start - first : stop - first]
-        count = _pair_count(start, K_i, K_j)
-        slope = _pair_count(start + 1, K_i, K_j) - count if stop - start > 1 else 0
-        total += count * float(np.einsum("i,i->", piece, piece))
-        if slope:
-            total += slope * float(np.einsum("i,i,i->", ramp[: stop - start], piece, piece))
-    return total
-
-
-def _column_lag_sums(memory: _LongMemory, sizes: list[int], terms: list[int]) -> list[tuple[float, float]]:
-    """(Σ N c², tail bound) of the overlapping lag sums of the pairs (i, j = last), sizes increasing.
-
-    Along octave steps the triangle doubles, B_{2m}² = B_m² (1 + x^m)², so
-    c_{2m,j}(δ) = c_{m,j}(δ) + 2 c_{m,j}(δ − m) + c_{m,j}(δ − 2m): three additions per lag instead of two
-    moving sums per pair. Other steps start afresh from A_j.
-    """
-    m_j, K_j = sizes[-1], terms[-1]
-    windows = [_pair_window(memory, m, m_j, K, K_j) for m, K in zip(sizes, terms, strict=True)]
-    top = max(high for _, high, _ in windows)
-    starts = [min(low for low, _, _ in windows)] * len(sizes)
-    for i in range(len(sizes) - 2, -1, -1):  # how far below each c_i must reach for the later doublings
-        starts[i] = starts[i + 1] - 2 * sizes[i] if sizes[i + 1] == 2 * sizes[i] else starts[-1]
-    ramp = np.arange(top - starts[0] + 1, dtype=np.float64)
-    results: list[tuple[float, float]] = []
-    values, first = np.zeros(0), 0
-    for i, (m_i, K_i) in enumerate(zip(sizes, terms, strict=True)):
-        if i > 0 and m_i == 2 * sizes[i - 1]:
-            m, length = sizes[i - 1], len(values)
-            doubled = np.multiply(values[m : length - m], 2.0)
-            doubled += values[2 * m :]
-            doubled += values[: length - 2 * m]
-            values, first = doubled, first + 2 * m
-        else:
-            values, first = memory.cross_covariance(m_i, m_j, starts[i], top), starts[i]
-        low, high, reach = windows[i]
-        total = _counted_square_sum(values[low - first : high - first + 1], low, K_i, K_j, ramp)
-        bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
-        results.append((total, bound))
-    return results
-
-
 # --- public ---------------------------------------------------------------------------------------
 
 
@@ -376,30 +317,62 @@ def _terms_count(sizes: np.ndarray, length: int, estimator: str) -> np.ndarray:
     return length - 2 * sizes + 1 if estimator == "overlapping" else length // sizes - 1
 
 
+#: Records up to this length sum the overlapping lag sums over every lag (O(n) per pair, exact); longer
+#: ones use :mod:`carousel_theory.lag_quadrature` (cost independent of n, proved bound).
+EVERY_LAG_LENGTH = 1 << 15
+
+
+def _every_lag_sum(memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int) -> float:
+    """Σ_δ N c² over every lag −(K_i − 1) … K_j − 1 of a short record (no truncation, no bound)."""
+    c = memory.cross_covariance(m_i, m_j, -(K_i - 1), K_j - 1)
+    deltas = np.arange(-(K_i - 1), K_j)
+    counts = np.minimum(K_i - 1, K_j - 1 - deltas) - np.maximum(0, -deltas) + 1
+    return float(np.einsum("i,i,i->", counts.astype(np.float64), c, c))
+
+
+def _pair_sum(
+    model: NoiseModel,
+    engine: LagModel | _LongMemory | None,
+    m_i: int,
+    m_j: int,
+    K_i: int,
+    K_j: int,
+    estimator: str,
+) -> tuple[float, float]:
+    """(Σ N c², bound on its error) of one pair by the engine chosen for the model and record."""
+    if isinstance(engine, LagModel):
+        return counted_square_sum(engine, m_i, m_j, K_i, K_j)
+    if engine is None:
+        return _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
+    if estimator == "overlapping":
+        return _every_lag_sum(engine, m_i, m_j, K_i, K_j), 0.0
+    return _lag_sum(engine, m_i, m_j, K_i, K_j, estimator)
+
+
+def _engine(
+    model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
+) -> LagModel | _LongMemory | None:
+    """None (white, RRW, quantization: exact integers), every lag (short records), or the quadrature."""
+    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
+    if estimator == "overlapping" and not long_terms:
+        return None
+    if estimator == "overlapping" and length > EVERY_LAG_LENGTH:
+        return LagModel.of(model)
+    return _LongMemory(model, sizes, length, every_lag=estimator == "overlapping")
+
+
 def _covariance_matrix(
     model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
 ) -> tuple[np.ndarray, np.ndarray]:
-    """(Σ N c² / scale, tail bound / scale) for every pair of non-decreasing ``sizes``."""
+    """(Σ N c² / scale, error bound / scale) for every pair of non-decreasing ``sizes``."""
     terms = _terms_count(sizes, length, estimator)
-    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
-    memory = _LongMemory(model, sizes, length) if long_terms or estimator != "overlapping" else None
+    engine = _engine(model, sizes, length, estimator)
     count = len(sizes)
     covariance, bound = np.empty((count, count)), np.zeros((count, count))
-    by_column = memory is not None and estimator == "overlapping" and bool(np.all(np.diff(sizes) > 0))
-    for j in range(count):  # column by column: A_j is prepared once per j
-        column = (
-            _column_lag_sums(memory, sizes[: j + 1].tolist(), terms[: j + 1].tolist())
-            if by_column and memory is not None
-            else None
-        )
+    for j in range(count):
         for i in range(j + 1):
             m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
-            if column is not None:
-                total, tail = column[i]
-            elif memory is None:
-                total, tail = _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
-            else:
-                total, tail = _lag_sum(memory, m_i, m_j, K_i, K_j, estimator)
+            total, tail = _pair_sum(model, engine, m_i, m_j, K_i, K_j, estimator)
             scale = 2.0 * float(m_i) ** 2 * float(m_j) ** 2 * K_i * K_j
             covariance[i, j] = covariance[j, i] = total / scale
             bound[i, j] = bound[j, i] = tail / scale
@@ -411,9 +384,10 @@ def allan_estimate_covariance(
 ) -> TauCovariance:
     """Covariance of the Allan variance estimates at m = ``tau_samples`` in a record of ``length`` samples.
 
-    Exact in closed form for white, rate random walk and quantization with the overlapping estimator;
-    exact finite lag sums for AR and the non-overlapping estimator; 1/f by a finite lag sum with the
-    tail bounded (module text). For the non-overlapping estimator every m must divide the larger ones.
+    Exact in closed form for white, rate random walk and quantization with the overlapping estimator; 1/f
+    and AR summed over every lag of a short record, by the lag quadrature (proved bound) of a long one,
+    and by a finite lag sum with the 1/f tail bounded for the non-overlapping estimator (module text).
+    For the non-overlapping estimator every m must divide the larger ones.
     """
     sizes = np.asarray(tau_samples, dtype=np.int64)
     if estimator not in ("overlapping", "non-overlapping"):
@@ -440,13 +414,8 @@ def allan_estimate_variance(
     """Var σ̂²(m) at each m (the diagonal of :func:`allan_estimate_covariance`, without the other pairs)."""
     sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
     terms = _terms_count(sizes, int(length), estimator)
-    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
-    memory = _LongMemory(model, sizes, int(length)) if long_terms or estimator != "overlapping" else None
+    engine = _engine(model, np.sort(sizes), int(length), estimator)
     result = np.empty(len(sizes))
     for i, (m, K) in enumerate(zip(sizes.tolist(), terms.tolist(), strict=True)):
-        if memory is None:
-            total = _finite_sum(model, m, m, K, K)
-        else:
-            total = _lag_sum(memory, m, m, K, K, estimator)[0]
-        result[i] = total / (2.0 * float(m) ** 4 * K * K)
+        result[i] = _pair_sum(model, engine, m, m, K, K, estimator)[0] / (2.0 * float(m) ** 4 * K * K)
     return result

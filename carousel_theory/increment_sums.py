@@ -1,0 +1,233 @@
+"""Fourth sums of increment autocovariances: the Allan variance and the τ cross-covariances in O(1) per lag.
+
+Setting (TIM 2014 §II; :mod:`carousel_theory.noise_model`). With the increments z_t = y_t − y_{t−1} and
+their autocovariance γ_z, the cluster-mean difference at m samples is d_s = Σ_k g_m[k] z_{s+1+k}, g_m the
+triangle 1, 2, …, m, …, 1, and the cross-covariance of two such differences at offset δ is
+
+    c_ij(δ) = Σ_u W_ij(u) γ_z(δ + u) = Σ_q w_q H(q − δ),    H(x) = Σ_k γ_z(k) R₃(x − k),
+
+where W_ij = Σ w_q R₃(q − ·) is a sum of nine cubic ramps R₃(x) = C(x + 3, 3) (x ≥ −3, else 0) with integer
+weights w_q that annihilate every cubic polynomial (their generating function has a zero of order four at
+x = 1). H is a fourth sum of γ_z: its backward fourth difference is γ_z, ∇⁴H = γ_z, and any other fourth
+sum differs from it by a cubic, which the weights remove. For m_i = m_j = m the positions are
+q + 2 ∈ {2m, m, 0, −m, −2m} with weights 1, −4, 6, −4, 1, so Var d = c_mm(0) and the Allan variance is
+
+    σ_A²(m) = [6H(−2) − 4(H(m − 2) + H(−m − 2)) + H(2m − 2) + H(−2m − 2)] / (2m²).
+
+1/f (fractionally integrated, any 0 < d < 1; TIM 2014 eq. (3))
+    γ_z(k) = σ_w² C_d Γ(k + d − 1)/Γ(k + 2 − d), C_d = Γ(3 − 2d)/(Γ(2 − d)Γ(d − 1)), for every integer k
+    (the Gamma ratio is even on the integers, by the reflection formula). The ratio telescopes:
+    Γ(x + 1 + e)/Γ(x + 1 − e) − Γ(x + e)/Γ(x − e) = 2e Γ(x + e)/Γ(x + 1 − e), so each sum raises e by ½,
+    and four sums give the closed form :data:`FLICKER_FOURTH_SUM`
+
+        H(x) = C_d Γ(x + 3 + d)/Γ(x + 2 − d) / (16 (d − 1)(d − ½) d (d + ½)),
+
+    even about x = −2. At d = ½ the numerator Γ(j + 3/2)/Γ(j − ½) = j² − ¼ (j = x + 2) is a quadratic,
+    which the weights remove; near d = ½ the evaluator subtracts it and divides exactly (a removable
+    singularity), so every d in (0, 1) is evaluated to about 1e-12 relative.
+
+Finite γ_z (autoregressive terms, truncated where their envelope is below
+:data:`carousel_theory.noise_model.AR_TRUNCATION`)
+    H(x) = Σ_{|k|≤T} γ_z(k) R₃(x − k) directly for |x| ≤ T + 3, 0 for x < −T − 3, and, for x > T − 3, where
+    R₃ is the cubic p(x) = (x + 1)(x + 2)(x + 3)/6 at every k, the exact Taylor form
+    Σ_r (−1)^r M_r p^{(r)}(x)/r! with the moments M_r = Σ_k k^r γ_z(k) (no cancellation of large values).
+"""
+
+from __future__ import annotations
+
+import functools
+from typing import Any
+
+import numpy as np
+import sympy as sp
+from scipy import special
+
+from carousel_theory import symbols
+
+__all__ = [
+    "FLICKER_FOURTH_SUM",
+    "FLICKER_INCREMENT_AUTOCOVARIANCE",
+    "allan_variance_from_fourth_sum",
+    "finite_fourth_sum",
+    "flicker_allan_variance_closed",
+    "flicker_fourth_sum",
+    "flicker_normalisation",
+    "rising_factorial",
+]
+
+_d = symbols.d
+_lag = sp.Symbol("x", integer=True)
+_normalisation = sp.gamma(3 - 2 * _d) / (sp.gamma(2 - _d) * sp.gamma(_d - 1))
+#: γ_z(k) of the 1/f increments at unit σ_w², any integer k (ARFIMA(0, d − 1, 0); TIM 2014 eq. (3)).
+FLICKER_INCREMENT_AUTOCOVARIANCE: sp.Expr = _normalisation / sp.rf(_lag + _d - 1, 3 - 2 * _d)
+#: A fourth sum H of :data:`FLICKER_INCREMENT_AUTOCOVARIANCE`: ∇⁴H(x) = γ_z(x) for every integer x.
+FLICKER_FOURTH_SUM: sp.Expr = (
+    _normalisation
+    * sp.rf(_lag + 2 - _d, 1 + 2 * _d)
+    / (16 * (_d - 1) * (_d - sp.Rational(1, 2)) * _d * (_d + sp.Rational(1, 2)))
+)
+
+# Stirling series of log Γ: B_{2k}/(2k(2k − 1)) for k = 1 … 8 (enough below 1e-17 for arguments ≥ 16).
+_STIRLING = tuple(float(sp.bernoulli(2 * k) / (2 * k * (2 * k - 1))) for k in range(1, 9))
+_STIRLING_FROM = 16.0
+
+
+def rising_factorial(a: Any, step: float) -> np.ndarray:
+    """Γ(a + step)/Γ(a) to a few 1e-14 relative (the rounding of a logarithm of size step·log a).
+
+    scipy's ``poch`` below a = 16; above it the Stirling difference (a − ½) log(1 + step/a) +
+    step log(a + step) − step + Σ_k c_k [(a + step)^{1−2k} − a^{1−2k}], so that no difference of two
+    large log Γ values is formed (scipy's ``poch`` loses about 1e-11 near a = 10⁴).
+    """
+    a = np.asarray(a, dtype=np.float64)
+    result = np.empty(a.shape)
+    large = a >= _STIRLING_FROM
+    if not np.all(large):
+        result[~large] = special.poch(a[~large], step)
+    for low, high, count in ((_STIRLING_FROM, 1e3, len(_STIRLING)), (1e3, np.inf, 3)):
+        # Above a = 1000 three terms leave less than 1e-24 (the fourth is B₈/56 · a⁻⁷).
+        chosen = (a >= low) & (a < high)
+        base = a[chosen]
+        shifted = base + step
+        logarithm = (base - 0.5) * np.log1p(step / base) + step * np.log(shifted) - step
+        inverse_shifted, inverse_base = 1.0 / shifted, 1.0 / base
+        square_shifted, square_base = inverse_shifted**2, inverse_base**2
+        for coefficient in _STIRLING[:count]:  # c_k [(a + step)^{1−2k} − a^{1−2k}], powers by products
+            logarithm += coefficient * (inverse_shifted - inverse_base)
+            inverse_shifted, inverse_base = inverse_shifted * square_shifted, inverse_base * square_base
+        result[chosen] = np.exp(logarithm)
+    return result
+
+
+# The numeric evaluator: the SymPy factors, lambdified once; the rising factorial is the one above.
+_normalisation_numeric = sp.lambdify(_d, _normalisation, "scipy")
+_rising_numeric = sp.lambdify(
+    (_lag, _d), sp.rf(_lag + 2 - _d, 1 + 2 * _d), [{"RisingFactorial": rising_factorial}, "scipy"]
+)
+_denominator = 16 * (_d - 1) * (_d - sp.Rational(1, 2)) * _d * (_d + sp.Rational(1, 2))
+_regular_denominator_numeric = sp.lambdify(_d, sp.cancel(_denominator / (_d - sp.Rational(1, 2))), "scipy")
+#: Within this distance of d = ½ the d = ½ quadratic is subtracted and the ratio taken by series.
+_NEAR_HALF = 0.1
+_SERIES_TERMS = 26
+
+
+def flicker_normalisation(d: float) -> float:
+    """C_d = Γ(3 − 2d)/(Γ(2 − d)Γ(d − 1)) of :data:`FLICKER_INCREMENT_AUTOCOVARIANCE` (negative)."""
+    return float(_normalisation_numeric(float(d)))
+
+
+def _log_gamma_slope(a: np.ndarray, step: float) -> np.ndarray:
+    """(log|Γ(a + step)| − log|Γ(a)|)/step for a ≥ ½, |step| ≤ 0.1, and ψ(a) at step = 0.
+
+    Below a = 16 the Taylor series Σ ψ^{(r−1)}(a) step^{r−1}/r! (terms fall at least like (2|step|)^r/r);
+    above, the Stirling difference of :func:`rising_factorial` divided by the step term by term, each
+    through log(1 + x)/x and (eˣ − 1)/x, x = step/a, so that no difference of large values is formed.
+    """
+    a = np.asarray(a, dtype=np.float64)
+    result = np.empty_like(a)
+    small = a < _STIRLING_FROM
+    if np.any(small):
+        total = np.zeros(int(np.count_nonzero(small)))
+        factorial, power = 1.0, 1.0
+        for r in range(1, _SERIES_TERMS + 1):
+            factorial *= r
+            total += special.polygamma(r - 1, a[small]) * (power / factorial)
+            power *= step
+        result[small] = total
+    large = a[~small]
+    ratio = step / large
+    log_step = np.log1p(ratio)
+    log_ratio = log_step / ratio if step else np.ones_like(large)
+    slope = (large - 0.5) / large * log_ratio + np.log(large + step) - 1.0
+    inverse, inverse_square = 1.0 / large, 1.0 / large**2
+    powers = inverse * inverse  # a^{e − 1}, e = 1 − 2k
+    for k, coefficient in enumerate(_STIRLING, start=1):
+        exponent = 1 - 2 * k  # [(a + step)^e − a^e]/step = a^{e−1} · e · exprel(e log(1 + x)) · log(1 + x)/x
+        slope += coefficient * exponent * powers * special.exprel(exponent * log_step) * log_ratio
+        powers = powers * inverse_square
+    result[~small] = slope
+    return result
+
+
+def _near_half_ratio(j: np.ndarray, d: float) -> np.ndarray:
+    """[Γ(j + 1 + d)/Γ(j − d) − (j² − ¼)] / (d − ½) for integers j ≥ 0 and |d − ½| ≤ 0.1, without
+    cancellation: (j² − ¼)(e^g − 1)/ε with ε = d − ½ and g = log of Γ(j+1+d)Γ(j−½)/(Γ(j+3/2)Γ(j−d))."""
+    epsilon = d - 0.5
+    # g/ε = [log Γ(j+1+d) − log Γ(j+3/2)]/ε − [log|Γ(j−d)| − log|Γ(j−½)|]/ε; at j = 0 the second bracket
+    # is taken at ½ by Γ(a) = Γ(a + 1)/a, which adds −log(1 + 2ε).
+    lower_argument = np.maximum(j - 0.5, 0.5)
+    slope = _log_gamma_slope(j + 1.5, epsilon) + _log_gamma_slope(lower_argument, -epsilon)
+    correction = 2.0 if epsilon == 0.0 else float(np.log1p(2.0 * epsilon) / epsilon)
+    slope = np.where(j == 0, slope + correction, slope)
+    return (j * j - 0.25) * special.exprel(epsilon * slope) * slope
+
+
+def flicker_fourth_sum(x: Any, d: float) -> np.ndarray:
+    """:data:`FLICKER_FOURTH_SUM` at integers ``x`` (unit σ_w²), up to a quadratic in x that the Allan and
+    cross-covariance weights remove (the module text)."""
+    j = np.abs(np.asarray(x, dtype=np.float64) + 2.0)  # H is even about x = −2
+    d = float(d)
+    if abs(d - 0.5) <= _NEAR_HALF:
+        scale = _normalisation_numeric(d) / _regular_denominator_numeric(d)
+        return scale * _near_half_ratio(j, d)
+    return (
+        _normalisation_numeric(d)
+        * _rising_numeric(j - 2.0, d)
+        / (_regular_denominator_numeric(d) * (d - 0.5))
+    )
+
+
+def finite_fourth_sum(gamma: np.ndarray, x: Any, *, total: float | None = None) -> np.ndarray:
+    """H(x) = Σ_{|k|<len(γ)} γ(|k|) R₃(x − k) for a finitely supported even γ (module text), at integers x.
+
+    ``total`` = Σ_k γ(k) when it is known exactly (0 for the increments of a stationary process, whose
+    computed sum is only rounding, which the cubic would multiply by x³/6).
+    """
+    points = np.asarray(x, dtype=np.int64)
+    reach = len(gamma) - 1
+    lags = np.arange(-reach, reach + 1)
+    full = np.concatenate((gamma[:0:-1], gamma))
+    moments = [float(np.dot(full, lags.astype(np.float64) ** r)) for r in range(4)]
+    moments[1] = moments[3] = 0.0  # γ is even
+    if total is not None:
+        moments[0] = float(total)
+    value = points.astype(np.float64)
+    # Σ_r (−1)^r M_r p^{(r)}(x)/r!, p(x) = (x+1)(x+2)(x+3)/6: p' = (3x² + 12x + 11)/6, p'' = x + 2, p''' = 1.
+    cubic = (
+        moments[0] * (value + 1) * (value + 2) * (value + 3) / 6
+        - moments[1] * (3 * value**2 + 12 * value + 11) / 6
+        + moments[2] * (value + 2) / 2
+        - moments[3] / 6
+    )
+    near = np.abs(points) <= reach + 3
+    result = np.where(points > reach - 3, cubic, 0.0)
+    if np.any(near):
+        # H = the fourth cumulative sum of γ from k = −reach (∇⁴H = γ, H = 0 below −reach): no large
+        # ramp values cancel.
+        table = np.concatenate((full, np.zeros(8)))
+        for _ in range(4):
+            table = np.cumsum(table)
+        index = points[near] + reach
+        result[near] = np.where(index >= 0, table[np.maximum(index, 0)], 0.0)
+    return result
+
+
+def allan_variance_from_fourth_sum(fourth_sum: Any, sizes: np.ndarray) -> np.ndarray:
+    """σ_A²(m) = [6H(−2) − 4(H(m−2) + H(−m−2)) + H(2m−2) + H(−2m−2)]/(2m²) (module text); ``fourth_sum``
+    maps an integer array x to H(x)."""
+    m = np.asarray(sizes, dtype=np.int64)
+    points = np.concatenate((np.array([-2]), m - 2, -m - 2, 2 * m - 2, -2 * m - 2))
+    values = np.asarray(fourth_sum(points), dtype=np.float64)
+    count = len(m)
+    centre, near, near_left = values[0], values[1 : 1 + count], values[1 + count : 1 + 2 * count]
+    far, far_left = values[1 + 2 * count : 1 + 3 * count], values[1 + 3 * count :]
+    variance = 6.0 * centre - 4.0 * (near + near_left) + far + far_left
+    return variance / (2.0 * m.astype(np.float64) ** 2)
+
+
+@functools.lru_cache(maxsize=256)
+def flicker_allan_variance_closed(d: float, sizes: tuple[int, ...]) -> np.ndarray:
+    """The 1/f Allan variance (stationary differences, unit σ_w²) at ``sizes`` from the closed form."""
+    result = allan_variance_from_fourth_sum(lambda x: flicker_fourth_sum(x, d), np.asarray(sizes))
+    result.setflags(write=False)
+    return result

@@ -1,0 +1,131 @@
+"""The lag quadrature of the τ-covariance: each part held to its proved bound.
+
+- the Gauss-block sum against the same c summed over every lag (isolates the quadrature; the proved
+  bound plus 1e-11 relative for floating-point rounding, which the bound does not cover: the nine-term
+  sum of H loses about (m_j/m_i)² ulps where the support is wider than 256 lags);
+- c itself, including the Newton series of the far tail, against 30-digit mpmath sums Σ_u W(u) γ_z(δ + u);
+- the lemma behind the derivative bound: F^{(p)} of F(z) = Γ(z + s)/Γ(z) keeps one sign, |F^{(p)}| falls,
+  and |F^{(p)}(j)| ≤ |Δ^p F(j − p)| (mpmath derivatives at 30 digits);
+- the discrete Gauss rule integrates polynomials of degree ≤ 2p − 1 over the block's integers exactly.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+from carousel_theory.lag_quadrature import (
+    GAUSS_POINTS,
+    LagModel,
+    _gauss_rule,
+    _Pair,
+    _values,
+    counted_square_sum,
+    ramp_positions,
+)
+from carousel_theory.noise_model import NoiseModel
+
+
+def _pair(m_i: int, m_j: int, K_i: int, K_j: int) -> _Pair:
+    ramps = ramp_positions(m_i, m_j)
+    positions = np.array([q for q, _ in ramps], dtype=np.float64)
+    return _Pair(positions, np.array([w for _, w in ramps], dtype=np.float64), m_i, m_j, K_i, K_j)
+
+
+def _every_lag(model: NoiseModel, m_i: int, m_j: int, length: int) -> float:
+    K_i, K_j = length - 2 * m_i + 1, length - 2 * m_j + 1
+    pair = _pair(m_i, m_j, K_i, K_j)
+    lags = np.arange(-(K_i - 1), K_j, dtype=np.float64)
+    values, errors = _values(pair, LagModel.of(model), lags)
+    assert np.all(errors <= 1e-14 * np.max(np.abs(values)))
+    return float(np.dot(pair.count(lags), values * values))
+
+
+@given(
+    d=st.floats(min_value=0.02, max_value=0.98),
+    m_i=st.sampled_from([1, 2, 3, 8, 50, 256]),
+    ratio=st.sampled_from([1, 2, 4, 16]),
+    length=st.integers(min_value=5_000, max_value=60_000),
+    with_ar=st.booleans(),
+)
+def test_gauss_blocks_equal_every_lag_summed_within_the_bound(d, m_i, ratio, length, with_ar):
+    model = NoiseModel(
+        sample_rate=1.0,
+        white_variance=0.5,
+        rrw_variance=1e-6,
+        flicker_variance=1.0,
+        flicker_d=d,
+        ar_variance=0.3 if with_ar else 0.0,
+        ar_coefficients=(0.7,) if with_ar else (),
+    )
+    m_j = m_i * ratio
+    assume(3 * m_j <= length)  # at least three clusters, as the fit requires
+    K_i, K_j = length - 2 * m_i + 1, length - 2 * m_j + 1
+    total, bound = counted_square_sum(LagModel.of(model), m_i, m_j, K_i, K_j)
+    reference = _every_lag(model, m_i, m_j, length)
+    assert abs(total - reference) <= bound + 1e-11 * reference  # the bound is for exact arithmetic
+    assert bound <= 1e-11 * reference
+
+
+@pytest.mark.parametrize("d", ["0.3", "0.5", "0.9"])
+@pytest.mark.parametrize(("m_i", "m_j"), [(1, 1), (3, 12), (64, 64)])
+def test_cross_covariance_against_mpmath(d, m_i, m_j):
+    # c(δ) = Σ_u W(u) γ_z(δ + u) at 30 digits, W = g_i ⋆ g_j; the lags reach the Newton-series tail.
+    model = NoiseModel(sample_rate=1.0, flicker_variance=1.0, flicker_d=float(d))
+    span = 2 * m_i + 2 * m_j - 4
+    lags = np.array([0, 1, -m_j, 2 * m_i + 40, 17 * max(span, 1) + 2 * m_i + 5, -30 * max(span, 1) - 2 * m_j])
+    pair = _pair(m_i, m_j, 10**6, 10**6)
+    values, errors = _values(pair, LagModel.of(model), lags.astype(np.float64))
+    triangle_i = [min(k + 1, 2 * m_i - 1 - k) for k in range(2 * m_i - 1)]
+    triangle_j = [min(k + 1, 2 * m_j - 1 - k) for k in range(2 * m_j - 1)]
+    with mpmath.workdps(30):
+        order = mpmath.mpf(d)
+        start = mpmath.gamma(3 - 2 * order) / mpmath.gamma(2 - order) ** 2
+
+        def gamma(k: int) -> mpmath.mpf:
+            return start * mpmath.rf(2 - order, abs(k)) ** -1 * mpmath.rf(order - 1, abs(k))
+
+        for lag, value, error in zip(lags.tolist(), values, errors, strict=True):
+            exact = mpmath.fsum(
+                a * b * gamma(lag + (k_j - k_i) + 2 * m_j - 2 - (2 * m_j - 2))
+                for k_i, a in enumerate(triangle_i)
+                for k_j, b in enumerate(triangle_j)
+            )
+            assert abs(value - float(exact)) <= error + 1e-12 * abs(float(exact))
+
+
+@pytest.mark.parametrize("d", ["0.1", "0.45", "0.55", "0.95"])
+@pytest.mark.parametrize("j", [15, 40, 1000])
+def test_derivative_lemma(d, j):
+    # F(z) = Γ(z + s)/Γ(z), s = 1 + 2d, z = j − d: F^{(p)} one-signed and falling in magnitude for p > s,
+    # and bounded by the p-th forward difference taken p steps back (the bound the quadrature uses).
+    p = GAUSS_POINTS
+    with mpmath.workdps(30):
+        s = 1 + 2 * mpmath.mpf(d)
+
+        def F(y):
+            return mpmath.gamma(y - mpmath.mpf(d) + s) / mpmath.gamma(y - mpmath.mpf(d))
+
+        values = [mpmath.diff(F, j + t, p) for t in (0, 1, 3)]
+        assert all(mpmath.sign(v) == mpmath.sign(values[0]) for v in values)
+        assert abs(values[0]) > abs(values[1]) > abs(values[2])
+        difference = mpmath.fsum((-1) ** (p - k) * mpmath.binomial(p, k) * F(j - p + k) for k in range(p + 1))
+        assert abs(values[0]) <= abs(difference)
+
+
+@pytest.mark.parametrize("length", [25, 64, 1000, 2**20])
+def test_discrete_gauss_rule_is_exact_to_degree_2p_minus_1(length):
+    offsets, weights, log_norm = _gauss_rule(length, GAUSS_POINTS)
+    for degree in (0, 1, 7, 2 * GAUSS_POINTS - 1):
+        scaled = offsets / (length - 1)
+        exact = sum(Fraction(t, length - 1) ** degree for t in range(length)) if length < 5000 else None
+        got = float(np.dot(weights, scaled**degree))
+        if exact is not None:
+            assert got == pytest.approx(float(exact), rel=1e-12)
+    assert np.isfinite(log_norm)
+    assert np.all(weights > 0)
