@@ -136,11 +136,25 @@ class AllanResult:
     edf: np.ndarray | None = None
     confidence: float = 0.95
     noise: str = "white"
+    deviation: np.ndarray | None = None
+    deviation_low: np.ndarray | None = None
+    deviation_high: np.ndarray | None = None
 
     @property
     def adev(self) -> np.ndarray:
-        """Allan deviation √σ_A²."""
-        return np.sqrt(self.avar)
+        """Allan deviation √σ_A².
+
+        Computed at the data's own power-of-two scale, so that it is finite and non-zero whenever the
+        true deviation is, even where σ_A² itself leaves float64's range (rates near 10³⁰⁰ or 10⁻³⁰⁰).
+        """
+        return np.sqrt(self.avar) if self.deviation is None else self.deviation
+
+    @property
+    def adev_interval(self) -> tuple[np.ndarray, np.ndarray]:
+        """The confidence interval of :attr:`adev` (the square roots of ``ci_low`` and ``ci_high``)."""
+        if self.deviation_low is None or self.deviation_high is None:
+            return np.sqrt(self.ci_low), np.sqrt(self.ci_high)
+        return self.deviation_low, self.deviation_high
 
 
 def octave_cluster_sizes(length: int) -> np.ndarray:
@@ -601,22 +615,24 @@ def allan_variance(
     samples = check_finite_array("y", y, min_length=3)
     length = len(samples)
     sizes, octave = _cluster_sizes(taus, sample_rate, length)
-    # The Allan variance ignores a constant; removing the mean keeps running sums small and accurate.
-    centered = samples - samples.mean()
+    centered, exponent = _scaled_centered(samples)
     if estimator == "overlapping":
         sums = _overlapping_sums(centered, sizes, octave)
         terms = length - 2 * sizes + 1
     else:
         sums = _non_overlapping_sums(centered, sizes, octave)
         terms = length // sizes - 1
-    avar = sums / (2.0 * sizes.astype(np.float64) ** 2 * terms)
+    scaled = sums / (2.0 * sizes.astype(np.float64) ** 2 * terms)
     edf = _degrees_of_freedom(noise, sizes, terms, length, sample_rate, estimator)
-    low, high = _chi_square_interval(avar, edf, confidence)
+    low, high = _chi_square_interval(scaled, edf, confidence)
+    with np.errstate(over="ignore", under="ignore"):  # σ_A² may leave float64's range; σ_A does not
+        avar, ci_low, ci_high = (np.ldexp(values, 2 * exponent) for values in (scaled, low, high))
+        deviations = [np.ldexp(np.sqrt(values), exponent) for values in (scaled, low, high)]
     return AllanResult(
         tau=sizes / sample_rate,
         avar=avar,
-        ci_low=low,
-        ci_high=high,
+        ci_low=ci_low,
+        ci_high=ci_high,
         clusters=length // sizes,
         estimator=estimator,
         samples_per_cluster=sizes,
@@ -624,7 +640,26 @@ def allan_variance(
         edf=edf,
         confidence=confidence,
         noise=noise if isinstance(noise, str) else "model",
+        deviation=deviations[0],
+        deviation_low=deviations[1],
+        deviation_high=deviations[2],
     )
+
+
+def _scaled_centered(samples: np.ndarray) -> tuple[np.ndarray, int]:
+    """(samples − mean) · 2⁻ᵉ, a new array whose largest magnitude lies in [1/2, 1), and e.
+
+    The Allan variance ignores a constant; removing the mean keeps running sums small and accurate.
+    Scaling by a power of two is exact in binary, so rates near 10³⁰⁰ no longer overflow when squared
+    and rates near 10⁻³⁰⁰ no longer underflow: σ_A² = 4ᵉ · (the variance of the scaled samples).
+    """
+    first = int(np.frexp(np.max(np.abs(samples)))[1])
+    centered = np.ldexp(samples, -first)
+    centered -= centered.mean()
+    second = int(np.frexp(np.max(np.abs(centered)))[1])
+    if second:
+        np.ldexp(centered, -second, out=centered)
+    return centered, first + second
 
 
 def _chi_square_interval(

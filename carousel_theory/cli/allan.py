@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 from typing import Any
@@ -84,12 +83,19 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def result_as_json(result: AllanResult) -> dict[str, Any]:
-    """The per-column JSON record: tau (s), avar, ci_low, ci_high, edf, clusters."""
+    """The per-column JSON record: tau (s), avar, ci_low, ci_high, adev, adev_low, adev_high, edf, clusters.
+
+    ``adev`` and its interval stay finite where ``avar`` leaves float64's range (null, or 0 by underflow).
+    """
+    adev_low, adev_high = result.adev_interval
     return {
         "tau": result.tau.tolist(),
         "avar": result.avar.tolist(),
         "ci_low": result.ci_low.tolist(),
         "ci_high": result.ci_high.tolist(),
+        "adev": result.adev.tolist(),
+        "adev_low": adev_low.tolist(),
+        "adev_high": adev_high.tolist(),
         "edf": None if result.edf is None else result.edf.tolist(),
         "clusters": result.clusters.tolist(),
     }
@@ -110,9 +116,9 @@ def plot_allan(
     figure, axes = plt.subplots(figsize=(7.5, 5.0), layout="constrained")
     for index, (name, result) in enumerate(results.items()):
         colour = f"C{index}"
-        deviation = np.sqrt(result.avar)
-        below = deviation - np.sqrt(result.ci_low)
-        above = np.sqrt(result.ci_high) - deviation
+        deviation = result.adev
+        low, high = result.adev_interval
+        below, above = deviation - low, high - deviation
         axes.errorbar(
             result.tau,
             deviation,
@@ -173,12 +179,12 @@ def run(args: argparse.Namespace) -> int:
     )
     for name, result in results.items():
         degrees = np.asarray(result.edf)
+        low, high = result.adev_interval
         print(f"\n{name}: τ (s), Allan deviation (rad/s), {100 * args.confidence:g} % interval, EDF")
         for i in range(len(result.tau)):
             print(
-                f"  {result.tau[i]:12.6g}  {math.sqrt(result.avar[i]):12.5e}  "
-                f"[{math.sqrt(result.ci_low[i]):11.4e}, {math.sqrt(result.ci_high[i]):11.4e}]  "
-                f"{degrees[i]:10.4g}"
+                f"  {result.tau[i]:12.6g}  {result.adev[i]:12.5e}  "
+                f"[{low[i]:11.4e}, {high[i]:11.4e}]  {degrees[i]:10.4g}"
             )
     if args.plot:
         print(f"\nwrote {args.plot}")
