@@ -15,6 +15,7 @@ from carousel_theory.data import Recording, load_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import atomic_output, plan_outputs
 from carousel_theory.progress import progress
+from carousel_theory.signal_checks import check_recording_length
 
 
 def add_recording_arguments(parser: argparse.ArgumentParser) -> None:
@@ -37,7 +38,7 @@ def read_recording(path: Path, args: argparse.Namespace) -> Recording:
     """Load DATA with the shared options; irregular timing is refused (the Allan variance needs a uniform
     sample rate)."""
     columns = dict(args.column) if args.column else None
-    return load_recording(
+    recording = load_recording(
         path,
         columns=columns,
         sample_rate=args.sample_rate,
@@ -45,6 +46,8 @@ def read_recording(path: Path, args: argparse.Namespace) -> Recording:
         time_unit=args.time_unit,
         max_values=args.max_values,
     )
+    check_recording_length(recording)
+    return recording
 
 
 def _taus(text: str) -> Any:

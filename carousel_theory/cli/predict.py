@@ -17,6 +17,7 @@ from carousel_theory.cli._files import write_or_compare
 from carousel_theory.cli._recording_options import add_reader_options
 from carousel_theory.data import MAX_VALUES
 from carousel_theory.output_files import atomic_output, plan_outputs, write_text_atomic
+from carousel_theory.signal_checks import check_noise_signal
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -31,6 +32,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("data", nargs="?", type=Path, help="a recording (CSV or NPZ) to predict")
     parser.add_argument("--axis", default=None, help="gyro column (default: the first in the file)")
+    parser.add_argument(
+        "--sample-rate", type=float, help="samples per second when the file has no time column"
+    )
     add_reader_options(parser)
     parser.add_argument(
         "--start", type=int, default=0, help="index of the first calibration sample (default 0)"
@@ -117,7 +121,9 @@ def _run_recording(args: argparse.Namespace) -> int:
 
     calibration_length, horizon = _check_recording_options(args)
     plan_outputs([(args.output, "file")], inputs=[args.data])
-    recording = load_recording(args.data, time_unit=args.time_unit, max_values=args.max_values)
+    recording = load_recording(
+        args.data, sample_rate=args.sample_rate, time_unit=args.time_unit, max_values=args.max_values
+    )
     axis = args.axis or next(iter(recording.rates))
     if axis not in recording.rates:
         raise ValueError(f"--axis={axis!r}: not in the recording (have {sorted(recording.rates)})")
@@ -127,6 +133,10 @@ def _run_recording(args: argparse.Namespace) -> int:
             f"--calibration={calibration_length!r}: the recording has only {rates.shape[0] - args.start} "
             f"samples after --start={args.start}"
         )
+    segment = f"samples {args.start}…{args.start + calibration_length - 1}"
+    check_noise_signal(
+        rates[args.start : args.start + calibration_length], f"{args.data}: column {axis!r}, {segment}"
+    )
     result = forecast_recording(
         rates,
         start=args.start,

@@ -14,6 +14,7 @@ from carousel_theory.closed_loop.evaluation import MINIMUM_BINS
 from carousel_theory.closed_loop.resample import uniform_resample
 from carousel_theory.data import Recording
 from carousel_theory.effects import detect_quantization
+from carousel_theory.signal_checks import check_recording_signals
 
 __all__ = ["LoopInput", "prepare"]
 
@@ -117,5 +118,6 @@ def prepare(
         recording, note = uniform_resample(recording)
         observations.append(note)
     chosen = _chosen_axes(recording, axes, N)
+    check_recording_signals(recording, chosen)
     observations += _data_notes(recording, chosen)
     return LoopInput(recording, chosen, N, alpha, maximum_iterations, flicker, observations)

@@ -425,9 +425,10 @@ def spectral_density(noise: AxisNoise, frequencies: np.ndarray) -> np.ndarray:
             transfer = (transfer + coefficient) * z
         short = noise.white_variance / np.abs(1.0 - transfer) ** 2
     difference = np.maximum(4.0 * np.sin(omega / 2.0) ** 2, 1e-300)  # |1 − e^{−iω}|²
-    total = short + noise.rrw_variance / difference  # TIM 2014 eq. (2): r = q / (1 − B)
-    if noise.flicker_variance:
-        total = total + noise.flicker_variance / difference**noise.flicker_d  # eq. (3): (1 − B)^{−d}
+    with np.errstate(over="ignore"):  # at ω = 0 the walk's density is unbounded: +inf is its value
+        total = short + noise.rrw_variance / difference  # TIM 2014 eq. (2): r = q / (1 − B)
+        if noise.flicker_variance:
+            total = total + noise.flicker_variance / difference**noise.flicker_d  # eq. (3): (1 − B)^{−d}
     return total
 
 
