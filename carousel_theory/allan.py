@@ -624,10 +624,10 @@ def allan_variance(
         terms = length // sizes - 1
     scaled = sums / (2.0 * sizes.astype(np.float64) ** 2 * terms)
     edf = _degrees_of_freedom(noise, sizes, terms, length, sample_rate, estimator)
-    low, high = _chi_square_interval(scaled, edf, confidence)
+    variances = (scaled, *_chi_square_interval(scaled, edf, confidence))
     with np.errstate(over="ignore", under="ignore"):  # σ_A² may leave float64's range; σ_A does not
-        avar, ci_low, ci_high = (np.ldexp(values, 2 * exponent) for values in (scaled, low, high))
-        deviations = [np.ldexp(np.sqrt(values), exponent) for values in (scaled, low, high)]
+        avar, ci_low, ci_high = (np.ldexp(values, 2 * exponent) for values in variances)
+        deviations = [np.ldexp(np.sqrt(values), exponent) for values in variances]
     return AllanResult(
         tau=sizes / sample_rate,
         avar=avar,
@@ -640,9 +640,7 @@ def allan_variance(
         edf=edf,
         confidence=confidence,
         noise=noise if isinstance(noise, str) else "model",
-        deviation=deviations[0],
-        deviation_low=deviations[1],
-        deviation_high=deviations[2],
+        **dict(zip(("deviation", "deviation_low", "deviation_high"), deviations, strict=True)),
     )
 
 

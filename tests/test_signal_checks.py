@@ -32,7 +32,7 @@ INVALID = [
     ("values", "fragment"), [case[1:] for case in INVALID], ids=[case[0] for case in INVALID]
 )
 def test_refused_signals_name_the_column_and_the_rule(values, fragment) -> None:
-    with pytest.raises(UnusableSignalError, match="^run.csv: column 'wx': ") as caught:
+    with pytest.raises(UnusableSignalError, match=r"^run\.csv: column 'wx': ") as caught:
         check_noise_signal(values, "run.csv: column 'wx'")
     assert fragment in str(caught.value)
     assert isinstance(caught.value, ValueError)
