@@ -110,6 +110,9 @@ def _check_recording_options(args: argparse.Namespace) -> tuple[int, int]:
         check_positive_real("--driving-variance", args.driving_variance)
     if args.white_variance is not None:
         check_positive_real("--white-variance", args.white_variance, allow_zero=True)
+    for option, given in (("--markdown", args.markdown is not None), ("--check", args.check)):
+        if given:
+            raise ValueError(f"{option}: only with --table1 (a single recording writes --output)")
     if args.output is not None and args.output.suffix.lower() not in (".csv", ".json"):
         raise ValueError(f"--output={str(args.output)!r}: must end in .csv or .json")
     return calibration_length, horizon
@@ -284,6 +287,10 @@ def _run_table1(args: argparse.Namespace) -> int:
         raise ValueError("--output: not used with --table1 (use --json or --markdown)")
     if args.fit_d:
         raise ValueError("--fit-d: not used with --table1 (Table I is run at the given --d)")
+    if args.check and args.markdown is None:
+        raise ValueError("--check: needs --markdown FILE, the Table I report to compare with")
+    if not args.check:
+        plan_outputs([(args.markdown, "file")])
     table = _table1(args)
     result = table.as_dict()
     if args.json:

@@ -90,7 +90,13 @@ def _data_notes(recording: Recording, axes: tuple[str, ...]) -> list[str]:
             f"one gyro axis ({axes[0]}): averaging analysis only; carouseling needs two perpendicular axes"
         )
     if recording.angle is not None and len(axes) == 2:
-        notes.append("phi column present: carouselled bins use the measured angles, one bin per revolution")
+        span = float(np.ptp(np.unwrap(recording.angle)))
+        notes.append(
+            "phi column present: carouselled bins use the measured angles, one bin per revolution"
+            if span >= 2.0 * np.pi
+            else f"phi column spans {span:.3g} rad, less than one revolution: no carouselled bins, "
+            "so no carousel metrics (averaging metrics only)"
+        )
     if recording.temperature is None:
         notes.append("no temperature column: the temperature effect cannot be tested")
     elif float(np.ptp(recording.temperature)) == 0.0:
