@@ -333,9 +333,10 @@ def write_figures(
         rng = np.random.default_rng([seed, list(FIGURES).index(name)])
         figure = entry.draw(plt, realisations=realisations, rng=rng, show_progress=show_progress)
         path = out / entry.file_name
-        # No software/date metadata, so that the PNG bytes depend only on the drawing.
-        with atomic_output(path) as temporary:
-            figure.savefig(temporary, dpi=_DPI, format="png", metadata={"Software": None})
-        plt.close(figure)
+        try:  # No software/date metadata, so that the PNG bytes depend only on the drawing.
+            with atomic_output(path) as temporary:
+                figure.savefig(temporary, dpi=_DPI, format="png", metadata={"Software": None})
+        finally:
+            plt.close(figure)
         written.append(path)
     return written

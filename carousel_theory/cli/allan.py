@@ -116,35 +116,46 @@ def plot_allan(
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    if not any(np.any(result.adev > 0) for result in results.values()):
+        raise ValueError(f"--plot {path}: every Allan deviation is 0 (constant columns); log axes show nothing")
     figure, axes = plt.subplots(figsize=(7.5, 5.0), layout="constrained")
-    for index, (name, result) in enumerate(results.items()):
-        colour = f"C{index}"
-        deviation = result.adev
-        low, high = result.adev_interval
-        below, above = deviation - low, high - deviation
-        axes.errorbar(
-            result.tau,
-            deviation,
-            yerr=[below, above],
-            fmt="o",
-            ms=3.5,
-            capsize=2.5,
-            color=colour,
-            label=f"{name} ({result.estimator}, {100 * result.confidence:g} % interval)",
-        )
-        if models and name in models:
-            tau, avar = models[name]
-            axes.plot(tau, np.sqrt(avar), "-", color=colour, lw=1.3, label=f"{name} fitted model")
-    axes.set_xscale("log")
-    axes.set_yscale("log")
-    axes.set_xlabel("averaging time τ (s)")
-    axes.set_ylabel("Allan deviation σ_A(τ) (rad/s)")
-    axes.set_title(title, fontsize=10)
-    axes.grid(True, which="both", alpha=0.3)
-    axes.legend(fontsize=8)
-    with atomic_output(path) as temporary:
-        figure.savefig(temporary, dpi=120, format=Path(path).suffix.lstrip(".") or "png")
-    plt.close(figure)
+    try:  # the figure is closed even when drawing or writing fails (pyplot keeps every open figure)
+        for index, (name, result) in enumerate(results.items()):
+            _draw_result(axes, name, result, f"C{index}", None if models is None else models.get(name))
+        axes.set_xscale("log")
+        axes.set_yscale("log")
+        axes.set_xlabel("averaging time τ (s)")
+        axes.set_ylabel("Allan deviation σ_A(τ) (rad/s)")
+        axes.set_title(title, fontsize=10)
+        axes.grid(True, which="both", alpha=0.3)
+        axes.legend(fontsize=8)
+        with atomic_output(path) as temporary:
+            figure.savefig(temporary, dpi=120, format=Path(path).suffix.lstrip(".") or "png")
+    finally:
+        plt.close(figure)
+
+
+def _draw_result(
+    axes: Any, name: str, result: AllanResult, colour: str, model: tuple[np.ndarray, np.ndarray] | None
+) -> None:
+    """One column's deviations with their intervals, and its model curve; a zero deviation (a constant
+    column) has no place on log axes and is left out."""
+    deviation = result.adev
+    low, high = result.adev_interval
+    shown = np.isfinite(deviation) & (deviation > 0)
+    axes.errorbar(
+        result.tau[shown],
+        deviation[shown],
+        yerr=[(deviation - low)[shown], (high - deviation)[shown]],
+        fmt="o",
+        ms=3.5,
+        capsize=2.5,
+        color=colour,
+        label=f"{name} ({result.estimator}, {100 * result.confidence:g} % interval)",
+    )
+    if model is not None:
+        tau, avar = model
+        axes.plot(tau, np.sqrt(avar), "-", color=colour, lw=1.3, label=f"{name} fitted model")
 
 
 def run(args: argparse.Namespace) -> int:
