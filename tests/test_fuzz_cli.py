@@ -384,8 +384,8 @@ def reading_commands(draw: st.DrawFn, recording: Recording) -> tuple[list[str], 
         )
         option, suffix = "--markdown", ".md"
     elif command == "predict":
-        calibration = draw(st.sampled_from(["2", "10", "20", "1000"]))
-        arguments += ["--calibration", calibration, "--horizon", draw(st.sampled_from(["1", "5", "100"]))]
+        calibration = draw(mostly("100", ["2", "10", "20", "1000"]))
+        arguments += ["--calibration", calibration, "--horizon", draw(mostly("50", ["1", "5", "1000"]))]
         arguments += draw(st.sampled_from([[], ["--start", "3"], ["--axis", "wy"], ["--sample-rate", "100"]]))
         option, suffix = "--output", draw(st.sampled_from([".csv", ".json", ".txt"]))
     else:
@@ -538,3 +538,34 @@ def test_found_a_plot_that_fails_to_write_closes_its_figure(tmp_path, monkeypatc
         outcome = check_run(["allan", "run.csv", "--plot", "out.png"], folder, ["run.csv"], ["out.png"])
         assert outcome.status == 1 and "No space left" in outcome.err
         assert _open_figures() == before
+
+
+def _two_axis_csv(wx: np.ndarray, wy: np.ndarray) -> Recording:
+    columns = [np.arange(len(wx)) / 100.0, wx, wy]
+    return Recording("run.csv", _csv_text(["t", "wx", "wy"], columns, "plain").encode())
+
+
+@pytest.mark.parametrize("seed", [2, 3, 4, 5])
+def test_found_loop_on_a_short_recording_with_one_sample_blocks_runs(seed):
+    """The misfit bootstrap drew the random walk's (I, W) pair by Cholesky; with one-sample blocks that
+    covariance is singular (I = W), and ordinary white noise ended in 'not positive definite'."""
+    rng = np.random.default_rng(seed)
+    recording = _two_axis_csv(1e-3 * rng.standard_normal(300), 1e-3 * rng.standard_normal(300))
+    with workspace(recording) as folder:
+        outcome = check_run(["loop", "run.csv", "--samples-per-revolution", "4"], folder, ["run.csv"], [])
+        assert outcome.status == 0, outcome.err
+
+
+@pytest.mark.parametrize(
+    ("value", "fragment"),
+    [(1e-3, "once its effects are removed: constant"), (1.7e308, "a sample of magnitude 1.7e+308")],
+    ids=["spike-on-zero", "huge-spike-on-zero"],
+)
+def test_found_loop_on_a_lone_spike_names_the_column_and_rule(value, fragment):
+    """A lone spike on zeros: the loop removed the spike and then solved with a zero noise model
+    ('1th leading minor not positive definite'), or overflowed squaring the quantization step."""
+    spike = np.zeros(300)
+    spike[150] = value
+    with workspace(_two_axis_csv(spike, spike)) as folder:
+        outcome = check_run(["loop", "run.csv", "--samples-per-revolution", "3"], folder, ["run.csv"], [])
+        assert outcome.status == 2 and fragment in outcome.err and "column 'wx'" in outcome.err

@@ -496,7 +496,10 @@ def simulate_block_sums(noise: AxisNoise, length: int, block: int, rng: np.rando
         # Σ_k k and Σ_k k² over the block, exact integer sums (the weights of W are b, b − 1, …, 1)
         linear, square = sum(range(1, block + 1)), sum(k * k for k in range(1, block + 1))
         covariance = noise.rrw_variance * np.array([[block, linear], [linear, square]], dtype=np.float64)
-        pairs = rng.multivariate_normal(np.zeros(2), covariance, count, method="cholesky")
+        if block == 1:  # I = W = q₁: the covariance is singular, and Cholesky refuses it
+            pairs = np.repeat(rng.normal(0.0, math.sqrt(noise.rrw_variance), (count, 1)), 2, axis=1)
+        else:
+            pairs = rng.multivariate_normal(np.zeros(2), covariance, count, method="cholesky")
         before = np.concatenate(([0.0], np.cumsum(pairs[:-1, 0])))
         total += block * before + pairs[:, 1]
     if noise.flicker_variance:
