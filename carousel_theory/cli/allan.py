@@ -117,7 +117,9 @@ def plot_allan(
     import matplotlib.pyplot as plt
 
     if not any(np.any(result.adev > 0) for result in results.values()):
-        raise ValueError(f"--plot {path}: every Allan deviation is 0 (constant columns); a log axis shows none")
+        raise ValueError(
+            f"--plot {path}: every Allan deviation is 0 (constant columns); a log axis shows none"
+        )
     figure, axes = plt.subplots(figsize=(7.5, 5.0), layout="constrained")
     try:  # the figure is closed even when drawing or writing fails (pyplot keeps every open figure)
         for index, (name, result) in enumerate(results.items()):
