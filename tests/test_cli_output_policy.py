@@ -164,3 +164,14 @@ def test_issue13_point2_export_check_writes_nothing(tmp_path, capsys):
     assert main(["export", "--format", "json", "-o", str(target), "--check"]) == 1
     assert "missing" in capsys.readouterr().out
     assert list(tmp_path.iterdir()) == []
+
+
+def test_issue13_point1_design_plot_over_its_noise_file_is_refused(recording, tmp_path, capsys):
+    noise = tmp_path / "fit.json"
+    assert main(["fit", str(recording), "--json"]) == 0
+    noise.write_text(capsys.readouterr().out, encoding="utf-8")
+    arguments = ["design", "--noise", str(noise), "--latitude", "45", "--duration", "600"]
+    _refused([*arguments, "--plot", str(noise)], noise, capsys, "is the input")
+    _refused([*arguments, "--plot", str(recording / "p.png")], noise, capsys, "not a folder")
+    assert main([*arguments, "--scheme", "static", "--plot", str(tmp_path / "new" / "p.png")]) == 0
+    assert (tmp_path / "new" / "p.png").stat().st_size > 0
