@@ -93,14 +93,11 @@ _LEAKS = (
 
 
 def _write_columns(path, columns: dict[str, np.ndarray]) -> str:
-    np.savetxt(
-        path,
-        np.column_stack(list(columns.values())),
-        fmt="%.17g",
-        delimiter=",",
-        header=",".join(columns),
-        comments="",
+    """A CSV of exactly these columns (``repr`` round-trips float64), with or without a time column."""
+    rows = "".join(
+        ",".join(repr(float(v)) for v in row) + "\n" for row in zip(*columns.values(), strict=True)
     )
+    path.write_text(",".join(columns) + "\n" + "".join(rows), encoding="utf-8")
     return str(path)
 
 

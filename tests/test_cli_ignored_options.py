@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from carousel_theory.cli import main
+from carousel_theory.data import recording_from_arrays
 from carousel_theory.effects import check_effect_parameters
 from carousel_theory.simulate import simulate_recording, write_recording
 
@@ -75,18 +76,6 @@ def test_issue13_effect_parameters_out_of_range_are_refused(effect, parameters, 
         check_effect_parameters(effect, parameters)
 
 
-def _write(path, columns):
-    np.savetxt(
-        path,
-        np.column_stack(list(columns.values())),
-        fmt="%.17g",
-        delimiter=",",
-        header=",".join(columns),
-        comments="",
-    )
-    return str(path)
-
-
 @pytest.mark.parametrize("phi", ["constant", "half-turn", "rotating"])
 def test_issue13_point15_loop_says_truthfully_whether_measured_angles_give_carousel_bins(
     phi, tmp_path, capsys
@@ -98,13 +87,9 @@ def test_issue13_point15_loop_says_truthfully_whether_measured_angles_give_carou
         "half-turn": np.linspace(0.0, np.pi, count),
         "rotating": 2.0 * np.pi * np.arange(count) / 200.0,
     }[phi]
-    columns = {
-        "t": np.arange(count) / 100.0,
-        "wx": 6e-3 * rng.standard_normal(count),
-        "wy": 6e-3 * rng.standard_normal(count),
-        "phi": angle,
-    }
-    path = _write(tmp_path / "run.csv", columns)
+    rates = {"wx": 6e-3 * rng.standard_normal(count), "wy": 6e-3 * rng.standard_normal(count)}
+    arrays = recording_from_arrays(rates, time=np.arange(count) / 100.0, angle=angle)
+    path = str(write_recording(arrays, tmp_path / "run.csv"))
     report = tmp_path / "loop.json"
     assert main(["loop", path, "--json", str(report)]) == 0
     out = capsys.readouterr().out
