@@ -14,7 +14,7 @@ from carousel_theory.closed_loop.evaluation import MINIMUM_BINS
 from carousel_theory.closed_loop.resample import uniform_resample
 from carousel_theory.data import Recording
 from carousel_theory.effects import detect_quantization
-from carousel_theory.signal_checks import check_noise_signal, check_recording_signals
+from carousel_theory.signal_checks import check_recording_signals
 
 __all__ = ["LoopInput", "prepare"]
 
@@ -55,7 +55,6 @@ def _quantization_notes(recording: Recording, axes: Sequence[str] | None) -> lis
     """The lattice test needs the samples as recorded (averaging onto a uniform grid would hide it)."""
     notes = []
     for axis in (a for a in (axes or ("wx", "wy")) if a in recording.rates):
-        check_noise_signal(recording.rates[axis], f"{recording.source}: column {axis!r}")
         lattice = detect_quantization(recording.rates[axis])
         if lattice["quantized"]:
             notes.append(
@@ -120,11 +119,12 @@ def prepare(
     alpha = _check_alpha(alpha)
     maximum_iterations = check_positive_integer("maximum_iterations", maximum_iterations)
     flicker = _check_declared(declared)
+    chosen = _chosen_axes(recording, axes, N)
+    check_recording_signals(recording, chosen)  # as recorded, before any arithmetic on the values
     observations = [*recording.notes, *_quantization_notes(recording, axes)]
     if not recording.uniform:
         recording, note = uniform_resample(recording)
         observations.append(note)
-    chosen = _chosen_axes(recording, axes, N)
-    check_recording_signals(recording, chosen)
+        chosen = _chosen_axes(recording, axes, N)
     observations += _data_notes(recording, chosen)
     return LoopInput(recording, chosen, N, alpha, maximum_iterations, flicker, observations)
