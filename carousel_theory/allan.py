@@ -141,11 +141,25 @@ class AllanResult:
     edf: np.ndarray | None = None
     confidence: float = 0.95
     noise: str = "white"
+    deviation: np.ndarray | None = None
+    deviation_low: np.ndarray | None = None
+    deviation_high: np.ndarray | None = None
 
     @property
     def adev(self) -> np.ndarray:
-        """Allan deviation √σ_A²."""
-        return np.sqrt(self.avar)
+        """Allan deviation √σ_A².
+
+        Computed at the data's own power-of-two scale, so that it is finite and non-zero whenever the
+        true deviation is, even where σ_A² itself leaves float64's range (rates near 10³⁰⁰ or 10⁻³⁰⁰).
+        """
+        return np.sqrt(self.avar) if self.deviation is None else self.deviation
+
+    @property
+    def adev_interval(self) -> tuple[np.ndarray, np.ndarray]:
+        """The confidence interval of :attr:`adev` (the square roots of ``ci_low`` and ``ci_high``)."""
+        if self.deviation_low is None or self.deviation_high is None:
+            return np.sqrt(self.ci_low), np.sqrt(self.ci_high)
+        return self.deviation_low, self.deviation_high
 
 
 def octave_cluster_sizes(length: int) -> np.ndarray:
@@ -598,7 +612,7 @@ def allan_variance(
     taus : "octave" or array of float
         "octave": τ = 2^k/f_s up to a third of the record; or τ in s, whole numbers of samples, ≤ n/3.
     tau_range : (low, high), optional
-        Only τ in [low, high] s; either end may be None (open), e.g. ``(0.1, None)``.
+        Only τ in [low, high] s; either end may be None (open): ``(0.1, None)``.
     estimator : {"overlapping", "non-overlapping"}
         "non-overlapping" is TIM 2014 eq. (20).
     noise : str or NoiseModel
@@ -614,18 +628,17 @@ def allan_variance(
     )
     check_tau_range(tau_range)
     samples = check_finite_array("y", y, min_length=3)
-    length = len(samples)
-    sizes, avar, terms = _estimates(samples, _cluster_sizes(taus, sample_rate, length), estimator)
-    if tau_range is not None:
-        kept = _in_tau_range(sizes / sample_rate, tau_range)
-        sizes, terms, avar = sizes[kept], terms[kept], avar[kept]
+    length, clusters = len(samples), _cluster_sizes(taus, sample_rate, len(samples))
+    sizes, scaled, terms, exponent = _estimates(samples, clusters, estimator, tau_range, sample_rate)
     edf = _degrees_of_freedom(noise, sizes, terms, length, sample_rate, estimator)
-    low, high = _chi_square_interval(avar, edf, confidence)
+    (avar, ci_low, ci_high), deviations = _unscaled(
+        (scaled, *_chi_square_interval(scaled, edf, confidence)), exponent
+    )
     return AllanResult(
         tau=sizes / sample_rate,
         avar=avar,
-        ci_low=low,
-        ci_high=high,
+        ci_low=ci_low,
+        ci_high=ci_high,
         clusters=length // sizes,
         estimator=estimator,
         samples_per_cluster=sizes,
@@ -633,7 +646,18 @@ def allan_variance(
         edf=edf,
         confidence=confidence,
         noise=noise if isinstance(noise, str) else "model",
+        **dict(zip(("deviation", "deviation_low", "deviation_high"), deviations, strict=True)),
     )
+
+
+def _unscaled(variances: tuple[np.ndarray, ...], exponent: int) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """The Allan variances (and their deviations) of the unscaled samples from those of the samples scaled
+    by 2⁻ᵉ (:func:`_scaled_centered`): σ_A² = 4ᵉ · the scaled variance, exactly in binary."""
+    with np.errstate(over="ignore", under="ignore"):  # σ_A² may leave float64's range; σ_A does not
+        return (
+            [np.ldexp(values, 2 * exponent) for values in variances],
+            [np.ldexp(np.sqrt(values), exponent) for values in variances],
+        )
 
 
 def _required_rate(sample_rate: Any) -> Any:
@@ -646,20 +670,44 @@ def _required_rate(sample_rate: Any) -> Any:
 
 
 def _estimates(
-    samples: np.ndarray, cluster_sizes: tuple[np.ndarray, bool], estimator: str
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(cluster sizes, Allan variance, number of squared differences averaged), TIM 2014 eq. (20)."""
+    samples: np.ndarray,
+    cluster_sizes: tuple[np.ndarray, bool],
+    estimator: str,
+    tau_range: Any = None,
+    sample_rate: float = 1.0,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """(cluster sizes, Allan variance of the samples scaled by 2⁻ᵉ, number of squared differences averaged,
+    e), TIM 2014 eq. (20); σ_A² = 4ᵉ · the returned variance (:func:`_scaled_centered`)."""
     sizes, octave = cluster_sizes
     length = len(samples)
-    # The Allan variance ignores a constant; removing the mean keeps running sums small and accurate.
-    centered = samples - samples.mean()
+    centered, exponent = _scaled_centered(samples)
     if estimator == "overlapping":
         sums = _overlapping_sums(centered, sizes, octave)
         terms = length - 2 * sizes + 1
     else:
         sums = _non_overlapping_sums(centered, sizes, octave)
         terms = length // sizes - 1
-    return sizes, sums / (2.0 * sizes.astype(np.float64) ** 2 * terms), terms
+    scaled = sums / (2.0 * sizes.astype(np.float64) ** 2 * terms)
+    if tau_range is None:
+        return sizes, scaled, terms, exponent
+    kept = _in_tau_range(sizes / sample_rate, tau_range)  # only the τ in [low, high] s
+    return sizes[kept], scaled[kept], terms[kept], exponent
+
+
+def _scaled_centered(samples: np.ndarray) -> tuple[np.ndarray, int]:
+    """(samples − mean) · 2⁻ᵉ, a new array whose largest magnitude lies in [1/2, 1), and e.
+
+    The Allan variance ignores a constant; removing the mean keeps running sums small and accurate.
+    Scaling by a power of two is exact in binary, so rates near 10³⁰⁰ no longer overflow when squared
+    and rates near 10⁻³⁰⁰ no longer underflow: σ_A² = 4ᵉ · (the variance of the scaled samples).
+    """
+    first = int(np.frexp(np.max(np.abs(samples)))[1])
+    centered = np.ldexp(samples, -first)
+    centered -= centered.mean()
+    second = int(np.frexp(np.max(np.abs(centered)))[1])
+    if second:
+        np.ldexp(centered, -second, out=centered)
+    return centered, first + second
 
 
 def _chi_square_interval(

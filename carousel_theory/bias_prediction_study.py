@@ -36,6 +36,7 @@ from carousel_theory.prediction import (
 )
 from carousel_theory.progress import progress
 from carousel_theory.restricted_likelihood import VarianceEstimate, estimate_noise_variances
+from carousel_theory.signal_checks import check_noise_signal
 
 __all__ = [
     "PAPER_TABLE1_MEASURED",
@@ -114,6 +115,7 @@ def _recording_model(
 ) -> tuple[BiasModel, bool]:
     if driving is not None and white is not None and not estimate_d:
         return BiasModel(d=d, driving_variance=driving, white_variance=white, bias_prior=prior), False
+    check_noise_signal(calibration, "the calibration segment")
     # One calibration segment: REML at fixed d, or of d too (SJ 2012 estimated the variances by hand).
     estimate = estimate_noise_variances(calibration[None, :], d, RATIO_BOUNDS, estimate_d=estimate_d)
     model = BiasModel(

@@ -32,6 +32,7 @@ import numpy as np
 
 from carousel_theory._validation import check_boolean, check_integer, check_positive_integer
 from carousel_theory.evaluation_cost import check_budget, monte_carlo_cost
+from carousel_theory.output_files import atomic_output
 from carousel_theory.progress import progress
 
 __all__ = [
@@ -332,8 +333,10 @@ def write_figures(
         rng = np.random.default_rng([seed, list(FIGURES).index(name)])
         figure = entry.draw(plt, realisations=realisations, rng=rng, show_progress=show_progress)
         path = out / entry.file_name
-        # No software/date metadata, so that the PNG bytes depend only on the drawing.
-        figure.savefig(path, dpi=_DPI, metadata={"Software": None})
-        plt.close(figure)
+        try:  # No software/date metadata, so that the PNG bytes depend only on the drawing.
+            with atomic_output(path) as temporary:
+                figure.savefig(temporary, dpi=_DPI, format="png", metadata={"Software": None})
+        finally:
+            plt.close(figure)
         written.append(path)
     return written

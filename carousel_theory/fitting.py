@@ -57,6 +57,7 @@ from carousel_theory.allan import AllanResult, allan_variance, check_tau_range, 
 from carousel_theory.increment_sums import rising_factorial
 from carousel_theory.noise_model import NoiseModel, term_allan_variance
 from carousel_theory.progress import progress
+from carousel_theory.signal_checks import check_noise_signal, check_recording_signals
 from carousel_theory.tau_covariance import allan_estimate_covariance
 
 __all__ = [
@@ -671,6 +672,7 @@ def fit_noise_model(
         components, flicker_d, ar_order, ar_coefficients, tau_range, minimum_clusters, iterations
     )
     observed = observe_allan(y, sample_rate, estimator=estimator, keep_record="ar" in options.components)
+    check_noise_signal(y, "y")
     if confidence != observed.allan.confidence:
         confidence = float(check_positive_real("confidence", confidence))
         if not confidence < 1:
@@ -773,6 +775,7 @@ def fit_recording(
     unknown = [name for name in names if name not in recording.rates]
     if unknown:
         raise ValueError(f"axes={unknown!r}: not in the recording's axes {sorted(recording.rates)}")
+    check_recording_signals(recording, names)
     return {
         name: fit_noise_model(
             recording.rates[name], recording.sample_rate, model, tau_range=tau_range, **options

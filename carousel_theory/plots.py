@@ -94,10 +94,12 @@ def save_figure(figure: Any, path: Any, dpi: int = 120) -> None:
 
 
 def _deviation_bars(result: AllanResult, output_units: str) -> tuple[np.ndarray, np.ndarray]:
-    """Allan deviation in ``output_units`` and its (below, above) error bar lengths."""
-    deviation = from_rad_per_s(np.sqrt(result.avar), output_units)
-    below = deviation - from_rad_per_s(np.sqrt(result.ci_low), output_units)
-    above = from_rad_per_s(np.sqrt(result.ci_high), output_units) - deviation
+    """Allan deviation in ``output_units`` and its (below, above) error bar lengths (from the deviations,
+    which stay finite where the variance leaves float64's range)."""
+    low, high = result.adev_interval
+    deviation = from_rad_per_s(result.adev, output_units)
+    below = deviation - from_rad_per_s(low, output_units)
+    above = from_rad_per_s(high, output_units) - deviation
     return deviation, np.vstack([below, above])
 
 
@@ -163,7 +165,12 @@ def plot_allan(
 ) -> None:
     """Write the log-log Allan deviation of each column with its confidence interval, one marker and a
     small τ offset per column, the legend outside (:func:`allan_figure`); ``path`` is written atomically
-    (PNG unless its suffix names another matplotlib format)."""
+    (PNG unless its suffix names another matplotlib format). A constant column (every deviation 0) has
+    nothing to show on log axes and is refused."""
+    if not any(np.any(result.adev > 0) for result in results.values()):
+        raise ValueError(
+            f"--plot {path}: every Allan deviation is 0 (constant columns); a log axis shows none"
+        )
     save_figure(allan_figure(results, title, output_units=output_units), path)
 
 

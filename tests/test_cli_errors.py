@@ -78,3 +78,101 @@ def test_closed_pipe_in_process(monkeypatch: pytest.MonkeyPatch, capsys: pytest.
     monkeypatch.setattr(sys, "stdout", _ClosedPipe())
     assert main(["formula", "--list"]) == 0
     assert capsys.readouterr().err == ""
+
+
+# --- issue 13 point 14: messages that leaked internals ---------------------------------------------
+
+_LEAKS = (
+    "positive definite",
+    "leading minor",
+    "infs or NaNs",
+    "math domain",
+    "Traceback",
+    "driving-variance",
+)
+
+
+def _write_columns(path, columns: dict[str, np.ndarray]) -> str:
+    """A CSV of exactly these columns (``repr`` round-trips float64), with or without a time column."""
+    rows = "".join(
+        ",".join(repr(float(v)) for v in row) + "\n" for row in zip(*columns.values(), strict=True)
+    )
+    path.write_text(",".join(columns) + "\n" + "".join(rows), encoding="utf-8")
+    return str(path)
+
+
+def _signal(kind: str) -> np.ndarray:
+    noise = np.random.default_rng(14).standard_normal(3000)
+    return {
+        "constant": np.full(3000, 0.5),
+        "all-zero": np.zeros(3000),
+        "huge": 1e300 * noise,
+        "tiny": 1e-300 * noise,
+    }[kind]
+
+
+_RULES = {
+    "constant": "constant (every sample is 0.5)",
+    "all-zero": "constant (every sample is 0.0)",
+    "huge": "rates must stay within ±1e+60",
+    "tiny": "must be at least 1e-60",
+}
+
+
+@pytest.mark.parametrize("kind", sorted(_RULES))
+@pytest.mark.parametrize("command", ["fit", "predict", "loop"])
+def test_issue13_point14_degenerate_signals_name_the_file_column_and_rule(
+    command: str, kind: str, tmp_path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = _write_columns(tmp_path / f"{kind}.csv", {"t": np.arange(3000) / 100.0, "wx": _signal(kind)})
+    assert main([command, path]) == BAD_INPUT
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1
+    assert f"{path}: column 'wx'" in err and _RULES[kind] in err
+    assert not [leak for leak in _LEAKS if leak in err]
+
+
+@pytest.mark.parametrize("command", ["allan", "fit"])
+def test_issue13_point14_two_rows_name_the_file_and_column(command: str, tmp_path, capsys) -> None:
+    path = _write_columns(tmp_path / "two.csv", {"t": np.array([0.0, 0.01]), "wx": np.array([1.0, 2.0])})
+    assert main([command, path]) == BAD_INPUT
+    err = capsys.readouterr().err
+    assert f"{path}: 2 sample(s) in column(s) wx" in err and "at least 3" in err
+    assert "y:" not in err
+
+
+def test_issue13_point14_predict_without_time_column_takes_the_option_it_suggests(tmp_path, capsys) -> None:
+    noise = 1e-3 * np.random.default_rng(141).standard_normal(1200)
+    path = _write_columns(tmp_path / "no_time.csv", {"wx": noise})
+    arguments = ["predict", path, "--calibration", "1000", "--horizon", "100"]
+    assert main(arguments) == BAD_INPUT
+    assert "no time column and no sample_rate" in capsys.readouterr().err
+    assert main([*arguments, "--sample-rate", "100"]) == 0
+    assert "KF" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("scale", ["largest", "smallest"])
+def test_issue13_point14_signals_just_inside_the_bounds_are_fitted(scale: str, tmp_path, capsys) -> None:
+    noise = np.random.default_rng(142).standard_normal(3000)
+    rates = (
+        noise * (0.9e60 / np.max(np.abs(noise))) if scale == "largest" else noise * (2e-60 / np.std(noise))
+    )
+    path = _write_columns(tmp_path / f"{scale}.csv", {"t": np.arange(3000) / 100.0, "wx": rates})
+    for command in (["fit", path], ["predict", path], ["loop", path, "--axes", "wx"]):
+        assert main(command) == 0, capsys.readouterr().err
+        assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize(
+    "error",
+    [
+        ValueError("array must not contain infs or NaNs"),
+        ValueError("math domain error"),
+        np.linalg.LinAlgError("1th leading minor not positive definite"),
+    ],
+    ids=["scipy-check-finite", "math-domain", "leading-minor"],
+)
+def test_issue13_point14_internal_numerical_texts_become_a_user_level_failure(error: BaseException) -> None:
+    status, message = classify(error)
+    assert status == FAILURE
+    assert str(error) not in message and "--debug" in message

@@ -3,10 +3,13 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
 from carousel_theory.cli import main
+from carousel_theory.data import recording_from_arrays
 from carousel_theory.effects import check_effect_parameters
 from carousel_theory.simulate import simulate_recording, write_recording
 
@@ -30,6 +33,17 @@ CASES = [
     ("fit-flicker-d-without-flicker", ["fit", "{r}", "--flicker-d", "0.5"], "only with 'flicker' in --model"),
     ("loop-axis-twice", ["loop", "{r}", "--axes", "wx,wx"], "names an axis twice"),
     ("check-only-empty", ["check", "--only", ""], "must be a non-empty claim-id prefix"),
+    (
+        "predict-table1-check-without-markdown",
+        ["predict", "--table1", "--check"],
+        "--check: needs --markdown",
+    ),
+    ("predict-check-without-table1", ["predict", "{r}", "--check"], "--check: only with --table1"),
+    (
+        "predict-markdown-without-table1",
+        ["predict", "{r}", "--markdown", "t.md"],
+        "--markdown: only with --table1",
+    ),
 ]
 
 
@@ -60,3 +74,28 @@ def test_issue13_partial_check_says_it_writes_nothing(tmp_path, capsys):
 def test_issue13_effect_parameters_out_of_range_are_refused(effect, parameters, message):
     with pytest.raises(ValueError, match=message):
         check_effect_parameters(effect, parameters)
+
+
+@pytest.mark.parametrize("phi", ["constant", "half-turn", "rotating"])
+def test_issue13_point15_loop_says_truthfully_whether_measured_angles_give_carousel_bins(
+    phi, tmp_path, capsys
+):
+    rng = np.random.default_rng(151)
+    count = 3000
+    angle = {
+        "constant": np.full(count, 1.0),
+        "half-turn": np.linspace(0.0, np.pi, count),
+        "rotating": 2.0 * np.pi * np.arange(count) / 200.0,
+    }[phi]
+    rates = {"wx": 6e-3 * rng.standard_normal(count), "wy": 6e-3 * rng.standard_normal(count)}
+    arrays = recording_from_arrays(rates, time=np.arange(count) / 100.0, angle=angle)
+    path = str(write_recording(arrays, tmp_path / "run.csv"))
+    report = tmp_path / "loop.json"
+    assert main(["loop", path, "--json", str(report)]) == 0
+    out = capsys.readouterr().out
+    carouselled = json.loads(report.read_text(encoding="utf-8"))["metrics_before"]["carouselled_bins"]
+    if phi == "rotating":
+        assert "carouselled bins use the measured angles" in out and carouselled is not None
+    else:
+        assert "less than one revolution: no carouselled bins" in out
+        assert "use the measured angles" not in out and carouselled is None

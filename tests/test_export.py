@@ -380,6 +380,6 @@ def test_command_refuses_check_without_a_file_and_a_directory_target(tmp_path, c
     assert main(["export", "--format", "c", "--check"]) == 2
     assert "--check needs -o FILE" in capsys.readouterr().err
     assert main(["export", "--format", "c", "-o", str(tmp_path)]) == 2
-    assert "is a directory" in capsys.readouterr().err
+    assert "is a folder; name a file inside it" in capsys.readouterr().err
     assert main(["export", "--format", "python", "--fragment"]) == 2
     assert "--fragment: only with --format latex" in capsys.readouterr().err

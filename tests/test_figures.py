@@ -88,7 +88,7 @@ def test_command_reports_a_bad_output_directory(tmp_path, capsys):
         main(["figures", "--out", str(tmp_path / "taken"), "--realisations", "2", "--only", "tim2014_fig3"])
         == 2
     )
-    assert "must be a directory" in capsys.readouterr().err
+    assert "exists and is not a folder" in capsys.readouterr().err
 
 
 def test_flicker_coefficients_against_the_definition():

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from carousel_theory.allan import allan_variance
 from carousel_theory.cli import main
 from carousel_theory.cli._errors import BAD_INPUT
 from carousel_theory.data import MAX_LINE_BYTES, load_recording, recording_from_arrays
@@ -260,3 +261,84 @@ def test_issue13_item13_binary_after_the_first_block_names_the_row(tmp_path: Pat
     path.write_bytes(text + b"1\x00\x00\x00,\x00\n")
     with pytest.raises(ValueError, match=r"row 20000 .* NUL bytes"):
         load_recording(path)
+
+
+# --- item 9: Allan deviation of rates near 10³⁰⁰ and 10⁻³⁰⁰ -----------------------------------------
+
+
+def _mpmath_allan_deviations(samples: np.ndarray, sizes: list[int], overlapping: bool) -> list:
+    """σ_A(m) from the exact binary values of ``samples`` at 50 digits, straight from the definition:
+    half the mean squared difference of adjacent m-sample means (TIM 2014 eq. (20); every start
+    sample when overlapping)."""
+    import mpmath
+
+    with mpmath.workdps(50):
+        values = [mpmath.mpf(float(v)) for v in samples]
+        deviations = []
+        for m in sizes:
+            starts = range(len(values) - 2 * m + 1) if overlapping else range(0, len(values) - 2 * m + 1, m)
+            squares = [
+                (mpmath.fsum(values[s + m : s + 2 * m]) - mpmath.fsum(values[s : s + m])) ** 2 for s in starts
+            ]
+            deviations.append(mpmath.sqrt(mpmath.fsum(squares) / (2 * m**2 * len(squares))))
+        return deviations
+
+
+@pytest.mark.parametrize("magnitude", [1e300, 1.5e308, 1e-300, 3e-305])
+@pytest.mark.parametrize("estimator", ["overlapping", "non-overlapping"])
+def test_issue13_item9_allan_deviation_at_extreme_magnitudes_matches_mpmath(
+    magnitude: float, estimator: str
+) -> None:
+    import mpmath
+
+    samples = magnitude * np.random.default_rng(9).uniform(-1.0, 1.0, 96)
+    result = allan_variance(samples, 10.0, estimator=estimator)
+    reference = _mpmath_allan_deviations(
+        samples, [int(m) for m in result.samples_per_cluster], estimator == "overlapping"
+    )
+    assert np.all(np.isfinite(result.adev)) and np.all(result.adev > 0)
+    for got, expected in zip(result.adev, reference, strict=True):
+        # float64 sums of 96 terms: a relative error of a few hundred ulp at most
+        assert abs(mpmath.mpf(float(got)) / expected - 1) < 1e-13
+
+
+@pytest.mark.parametrize("exponent", [990, -1000])
+def test_issue13_item9_a_power_of_two_scale_passes_through_exactly(exponent: int) -> None:
+    samples = np.random.default_rng(99).standard_normal(500) + 3.0
+    plain = allan_variance(samples, 100.0)
+    scaled = allan_variance(np.ldexp(samples, exponent), 100.0)
+    np.testing.assert_array_equal(scaled.adev, np.ldexp(plain.adev, exponent))
+    for got, expected in zip(scaled.adev_interval, plain.adev_interval, strict=True):
+        np.testing.assert_array_equal(got, np.ldexp(expected, exponent))
+    np.testing.assert_array_equal(scaled.edf, plain.edf)
+
+
+@pytest.mark.parametrize("magnitude", [1e300, 1e-300])
+def test_issue13_item9_allan_cli_prints_the_deviation_and_json_has_no_infinity(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], magnitude: float
+) -> None:
+    samples = magnitude * np.random.default_rng(90).standard_normal(400)
+    path = tmp_path / "extreme.csv"
+    np.savetxt(
+        path,
+        np.column_stack([np.arange(400) / 100.0, samples]),
+        fmt="%.17g",
+        delimiter=",",
+        header="t,wx",
+        comments="",
+    )
+    expected = allan_variance(samples, 100.0).adev
+    assert main(["allan", str(path)]) == 0
+    printed = [
+        float(line.split()[1]) for line in capsys.readouterr().out.splitlines() if line.startswith("  ")
+    ]
+    np.testing.assert_allclose(printed, expected, rtol=1e-5)
+    assert main(["allan", str(path), "--json"]) == 0
+
+    def no_constants(constant: str) -> None:
+        raise AssertionError(f"JSON holds {constant}")
+
+    document = json.loads(capsys.readouterr().out, parse_constant=no_constants)
+    adev = np.array(document["columns"]["wx"]["adev"])
+    np.testing.assert_array_equal(adev, expected)
+    assert np.all(adev > 0)

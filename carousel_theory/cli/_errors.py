@@ -45,6 +45,17 @@ _BAD_INPUT_ERRNOS = {
 }
 
 
+#: ValueError texts raised inside NumPy, SciPy or ``math`` on a non-finite or degenerate intermediate:
+#: a failure of the computation, not something the user typed.
+_INTERNAL_VALUE_ERRORS = ("array must not contain infs or NaNs", "math domain error")
+
+_NUMERICAL_FAILURE = (
+    "numerical failure: the data make the model degenerate (a covariance that is not positive definite, "
+    "or a number beyond float64's range); check that each column varies and is in a sensible unit "
+    "(run with --debug for the details)"
+)
+
+
 def _os_message(error: OSError) -> str:
     where = error.filename if error.filename is not None else ""
     reason = error.strerror or str(error)
@@ -66,11 +77,9 @@ def classify(error: BaseException) -> tuple[int, str]:
             " use a shorter recording, fewer axes or fewer τ"
         )
     numerical = (ArithmeticError, _linalg_error())
-    if isinstance(error, numerical):
-        return (
-            FAILURE,
-            f"numerical failure ({type(error).__name__}: {error}); the data or options may be degenerate",
-        )
+    internal = isinstance(error, ValueError) and str(error) in _INTERNAL_VALUE_ERRORS
+    if isinstance(error, numerical) or internal:
+        return FAILURE, _NUMERICAL_FAILURE
     if isinstance(error, ValueError | TypeError):
         return BAD_INPUT, str(error)
     return FAILURE, (

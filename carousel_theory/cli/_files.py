@@ -5,20 +5,25 @@ from __future__ import annotations
 import difflib
 from pathlib import Path
 
+from carousel_theory.output_files import write_text_atomic
+
 __all__ = ["write_or_compare"]
 
 
 def write_or_compare(path: Path, text: str, check: bool) -> bool:
     """Write ``text`` to ``path``; with ``check``, write nothing and return whether the file already
-    holds exactly ``text`` (printing a short diff when it does not)."""
+    holds exactly ``text`` (printing a short diff when it does not).
+
+    The file is written whole or not at all (a temporary file renamed over it, see
+    :mod:`carousel_theory.output_files`); callers check their outputs with ``plan_outputs`` first.
+    """
     if not check:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text, encoding="utf-8")
+        write_text_atomic(path, text)
         return True
-    if not path.exists():
+    if not path.is_file():
         print(f"{path}: missing (regenerate it)")
         return False
-    current = path.read_text(encoding="utf-8")
+    current = path.read_text(encoding="utf-8", errors="replace")
     if current == text:
         return True
     diff = difflib.unified_diff(

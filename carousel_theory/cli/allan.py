@@ -18,6 +18,7 @@ from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs
 from carousel_theory.plots import plot_allan, short_title
 from carousel_theory.progress import progress
+from carousel_theory.signal_checks import check_recording_length
 
 
 def add_recording_arguments(parser: argparse.ArgumentParser) -> None:
@@ -49,6 +50,7 @@ def read_recording(path: Path, args: argparse.Namespace) -> Recording:
     )
     for note in recording.notes:  # what --resample did, on stderr: stdout may be JSON
         print(f"note: {note}", file=sys.stderr)
+    check_recording_length(recording)
     return recording
 
 
@@ -112,9 +114,7 @@ def _document(
 def _table_lines(name: str, result: AllanResult, args: argparse.Namespace) -> list[str]:
     """τ, the Allan deviation and its interval in ``--output-units``, and the EDF, one row per τ."""
     output = output_units(args)
-    deviation, low, high = (
-        output.rates(np.sqrt(values)) for values in (result.avar, result.ci_low, result.ci_high)
-    )
+    deviation, low, high = (output.rates(values) for values in (result.adev, *result.adev_interval))
     degrees = np.asarray(result.edf)
     lines = [
         f"\n{name}: τ (s), Allan deviation ({output.rate_label}), {100 * args.confidence:g} % interval "

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from carousel_theory.claims import all_claims
 from carousel_theory.cli._files import write_or_compare
+from carousel_theory.output_files import plan_outputs
 from carousel_theory.report import JSON_NAME, MARKDOWN_NAME, render_json, render_markdown, run_checks, summary
 
 
@@ -49,6 +50,10 @@ def run(args: argparse.Namespace) -> int:
         claims = [claim for claim in claims if claim.id.startswith(args.only)]
         if not claims:
             raise ValueError(f"--only={args.only!r}: no claim id starts with it")
+    if not args.only and not args.check:  # before the work: a refused output costs nothing
+        plan_outputs(
+            [(args.out, "directory"), (args.out / MARKDOWN_NAME, "file"), (args.out / JSON_NAME, "file")]
+        )
     checked = run_checks(claims)
     print(summary(checked))
     failed = any(item.verdict.status.value == "failed" for item in checked)

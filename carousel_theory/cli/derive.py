@@ -7,6 +7,7 @@ from pathlib import Path
 
 from carousel_theory.cli._files import write_or_compare
 from carousel_theory.derivations import all_documents
+from carousel_theory.output_files import plan_outputs
 from carousel_theory.progress import progress
 
 
@@ -33,6 +34,8 @@ def run(args: argparse.Namespace) -> int:
         if not documents:
             names = ", ".join(d.name for d in all_documents())
             raise ValueError(f"--only={args.only!r}: no such document (have: {names})")
+    if not args.check:
+        plan_outputs([(args.out, "directory"), *((args.out / f"{d.name}.md", "file") for d in documents)])
     unchanged = True
     for document in progress(documents, label="deriving"):
         same = write_or_compare(args.out / f"{document.name}.md", document.render(), args.check)

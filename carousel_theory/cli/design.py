@@ -24,6 +24,7 @@ from carousel_theory.fitting import NoiseModel
 from carousel_theory.heading import heading_monte_carlo
 from carousel_theory.imperfections import Imperfections
 from carousel_theory.json_output import json_document, strict_json
+from carousel_theory.output_files import plan_outputs
 from carousel_theory.progress import progress
 from carousel_theory.rotation_schemes import parse_scheme
 
@@ -208,7 +209,14 @@ def _plot(path: Path, schemes: list[Any], durations: list[float], settings: Desi
     save_figure(figure, path)
 
 
+def _input_files(args: argparse.Namespace) -> list[Path]:
+    """The files design reads: --noise and the angle files of profile schemes (``profile:file=…``)."""
+    profiles = [text.split("file=", 1)[1].split(",")[0] for text in args.scheme or () if "file=" in text]
+    return [Path(name) for name in profiles] + ([args.noise] if args.noise is not None else [])
+
+
 def run(args: argparse.Namespace) -> int:
+    plan_outputs([(args.plot, "file")], inputs=_input_files(args))
     settings = _settings(args)
     for duration in args.duration:
         if not duration > 0:

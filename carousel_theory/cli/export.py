@@ -11,6 +11,7 @@ from pathlib import Path
 
 from carousel_theory.cli._files import write_or_compare
 from carousel_theory.export import FORMATS, export_formulas
+from carousel_theory.output_files import plan_outputs
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -34,13 +35,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(handler=run)
 
 
-def _documents(args: argparse.Namespace) -> list[tuple[Path | None, str]]:
-    """(path, text) of every file the command writes (path None: standard output)."""
+def _header_path(args: argparse.Namespace) -> Path | None:
+    """The C header written beside ``-o NAME.c`` (None for every other output)."""
     if args.format != "c" or args.output is None:
-        return [(args.output, export_formulas(args.format, fragment=args.fragment))]
+        return None
     header = args.output.with_suffix(FORMATS["c-header"])
     if header == args.output:
         raise ValueError(f"-o {args.output}: the C source needs a name not ending in .h (e.g. formulas.c)")
+    return header
+
+
+def _documents(args: argparse.Namespace, header: Path | None) -> list[tuple[Path | None, str]]:
+    """(path, text) of every file the command writes (path None: standard output)."""
+    if header is None:
+        return [(args.output, export_formulas(args.format, fragment=args.fragment))]
     return [
         (args.output, export_formulas("c", header_name=header.name)),
         (header, export_formulas("c-header")),
@@ -52,9 +60,10 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError("--check needs -o FILE (the file to compare with)")
     if args.fragment and args.format != "latex":
         raise ValueError(f"--fragment: only with --format latex, not --format {args.format}")
-    if args.output is not None and args.output.is_dir():
-        raise IsADirectoryError(f"-o {args.output}: is a directory; give a file name")
-    documents = _documents(args)
+    header = _header_path(args)
+    if not args.check:
+        plan_outputs([(args.output, "file"), (header, "file")])
+    documents = _documents(args, header)
     if args.output is None:
         print(documents[0][1], end="")
         return 0

@@ -6,6 +6,7 @@ import argparse
 from pathlib import Path
 
 from carousel_theory.figures import DEFAULT_REALISATIONS, DEFAULT_SEED, FIGURES, write_figures
+from carousel_theory.output_files import plan_outputs
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -44,6 +45,8 @@ def run(args: argparse.Namespace) -> int:
         import matplotlib  # noqa: F401
     except ImportError:  # pragma: no cover - matplotlib is in the test extras
         raise ValueError("matplotlib is needed: pip install 'carousel-theory[plots]'") from None
+    names = args.only or list(FIGURES)
+    plan_outputs([(args.out, "directory"), *((args.out / FIGURES[name].file_name, "file") for name in names)])
     written = write_figures(
         args.out, realisations=args.realisations, seed=args.seed, only=args.only, force=args.force
     )

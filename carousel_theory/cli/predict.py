@@ -19,6 +19,7 @@ from carousel_theory.cli._output_units import OutputUnits, add_output_units_opti
 from carousel_theory.cli._recording_options import add_reader_options, reader_keywords, reader_options_given
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import atomic_output, plan_outputs, write_text_atomic
+from carousel_theory.signal_checks import check_noise_signal
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -33,6 +34,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("data", nargs="?", type=Path, help="a recording (CSV or NPZ) to predict")
     parser.add_argument("--axis", default=None, help="gyro column (default: the first in the file)")
+    parser.add_argument(
+        "--sample-rate", type=float, help="samples per second when the file has no time column"
+    )
     add_reader_options(parser)
     parser.add_argument(
         "--start", type=int, default=0, help="index of the first calibration sample (default 0)"
@@ -61,6 +65,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--output", type=Path, help="write the forecast here (.csv or .json; rates in --output-units)"
     )
     add_output_units_option(parser)
+    _add_table1_options(parser)
+    parser.set_defaults(handler=run)
+
+
+def _add_table1_options(parser: argparse.ArgumentParser) -> None:
+    """The options of ``--table1``, the batch test of SJ 2012 Table I."""
     parser.add_argument("--table1", action="store_true", help="run the batch test of SJ 2012 Table I")
     parser.add_argument("--runs", type=int, default=1000, help="simulated runs for --table1 (default 1000)")
     parser.add_argument("--seed", type=int, default=2012, help="seed of the simulated runs (default 2012)")
@@ -78,7 +88,6 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--check", action="store_true", help="with --markdown: write nothing, fail on difference"
     )
-    parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -87,7 +96,8 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(
                 f"DATA={str(args.data)!r}: not used with --table1 (use --data DIR for measured data)"
             )
-        if given := reader_options_given(args):
+        given = reader_options_given(args) + (["--sample-rate"] if args.sample_rate is not None else [])
+        if given:
             raise ValueError(f"{', '.join(given)}: apply to DATA, not to --table1")
         if args.output_units != "rad/s":
             raise ValueError(
@@ -116,6 +126,9 @@ def _check_recording_options(args: argparse.Namespace) -> tuple[int, int]:
         check_positive_real("--driving-variance", args.driving_variance)
     if args.white_variance is not None:
         check_positive_real("--white-variance", args.white_variance, allow_zero=True)
+    for option, given in (("--markdown", args.markdown is not None), ("--check", args.check)):
+        if given:
+            raise ValueError(f"{option}: only with --table1 (a single recording writes --output)")
     if args.output is not None and args.output.suffix.lower() not in (".csv", ".json"):
         raise ValueError(f"--output={str(args.output)!r}: must end in .csv or .json")
     return calibration_length, horizon
@@ -127,9 +140,9 @@ def _run_recording(args: argparse.Namespace) -> int:
 
     calibration_length, horizon = _check_recording_options(args)
     plan_outputs([(args.output, "file")], inputs=[args.data])
-    recording = load_recording(args.data, **reader_keywords(args))
-    for note in recording.notes:  # what --resample did
-        print(f"note: {note}")
+    recording = load_recording(args.data, sample_rate=args.sample_rate, **reader_keywords(args))
+    for note in recording.notes:  # what --resample did, on stderr: stdout may be JSON
+        print(f"note: {note}", file=sys.stderr)
     axis = args.axis or next(iter(recording.rates))
     if axis not in recording.rates:
         raise ValueError(f"--axis={axis!r}: not in the recording (have {sorted(recording.rates)})")
@@ -139,6 +152,10 @@ def _run_recording(args: argparse.Namespace) -> int:
             f"--calibration={calibration_length!r}: the recording has only {rates.shape[0] - args.start} "
             f"samples after --start={args.start}"
         )
+    segment = f"samples {args.start}…{args.start + calibration_length - 1}"
+    check_noise_signal(
+        rates[args.start : args.start + calibration_length], f"{args.data}: column {axis!r}, {segment}"
+    )
     result = forecast_recording(
         rates,
         start=args.start,
@@ -334,6 +351,10 @@ def _run_table1(args: argparse.Namespace) -> int:
         raise ValueError("--output: not used with --table1 (use --json or --markdown)")
     if args.fit_d:
         raise ValueError("--fit-d: not used with --table1 (Table I is run at the given --d)")
+    if args.check and args.markdown is None:
+        raise ValueError("--check: needs --markdown FILE, the Table I report to compare with")
+    if not args.check:
+        plan_outputs([(args.markdown, "file")])
     table = _table1(args)
     result = table.as_dict()
     if args.json:

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from carousel_theory.effects import CATALOGUE
+from carousel_theory.output_files import atomic_output, plan_outputs
 from carousel_theory.simulate import (
     MAX_SIMULATED_SAMPLES,
     OUTSIDE_CATALOGUE,
@@ -122,7 +123,14 @@ def _noise_variances(args: argparse.Namespace) -> dict[str, float]:
     return {**variances, "quantization": model.quantization}
 
 
+#: The extensions a recording is written in (``write_recording`` chooses the format by them).
+RECORDING_SUFFIXES = (".csv", ".npz")
+
+
 def run(args: argparse.Namespace) -> int:
+    if args.out.suffix.lower() not in RECORDING_SUFFIXES:
+        raise ValueError(f"OUT={str(args.out)!r}: must end in .csv or .npz (the format is chosen by it)")
+    plan_outputs([(args.out, "file")])
     axes = tuple(a.strip() for a in args.axes.split(",") if a.strip())
     if not axes:
         raise ValueError(f"--axes={args.axes!r}: must name at least one axis, e.g. wx,wy")
@@ -143,7 +151,8 @@ def run(args: argparse.Namespace) -> int:
         samples_per_revolution=args.samples_per_revolution,
         max_samples=args.max_samples,
     )
-    write_recording(recording, args.out)
+    with atomic_output(args.out) as temporary:  # whole or not at all: an old file survives a failure
+        write_recording(recording, temporary)
     described = ", ".join(args.effect) or "none"
     print(f"wrote {args.out}: {samples} samples, axes {', '.join(axes)}, effects {described}")
     print(

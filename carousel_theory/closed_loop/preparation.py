@@ -14,6 +14,7 @@ from carousel_theory.closed_loop.evaluation import MINIMUM_BINS
 from carousel_theory.closed_loop.resample import uniform_resample
 from carousel_theory.data import Recording
 from carousel_theory.effects import detect_quantization
+from carousel_theory.signal_checks import check_recording_signals
 
 __all__ = ["LoopInput", "prepare"]
 
@@ -89,7 +90,13 @@ def _data_notes(recording: Recording, axes: tuple[str, ...]) -> list[str]:
             f"one gyro axis ({axes[0]}): averaging analysis only; carouseling needs two perpendicular axes"
         )
     if recording.angle is not None and len(axes) == 2:
-        notes.append("phi column present: carouselled bins use the measured angles, one bin per revolution")
+        span = float(np.ptp(np.unwrap(recording.angle)))
+        notes.append(
+            "phi column present: carouselled bins use the measured angles, one bin per revolution"
+            if span >= 2.0 * np.pi
+            else f"phi column spans {span:.3g} rad, less than one revolution: no carouselled bins, "
+            "so no carousel metrics (averaging metrics only)"
+        )
     if recording.temperature is None:
         notes.append("no temperature column: the temperature effect cannot be tested")
     elif float(np.ptp(recording.temperature)) == 0.0:
@@ -112,10 +119,12 @@ def prepare(
     alpha = _check_alpha(alpha)
     maximum_iterations = check_positive_integer("maximum_iterations", maximum_iterations)
     flicker = _check_declared(declared)
+    chosen = _chosen_axes(recording, axes, N)
+    check_recording_signals(recording, chosen)  # as recorded, before any arithmetic on the values
     observations = [*recording.notes, *_quantization_notes(recording, axes)]
     if not recording.uniform:
         recording, note = uniform_resample(recording)
         observations.append(note)
-    chosen = _chosen_axes(recording, axes, N)
+        chosen = _chosen_axes(recording, axes, N)
     observations += _data_notes(recording, chosen)
     return LoopInput(recording, chosen, N, alpha, maximum_iterations, flicker, observations)

@@ -425,9 +425,10 @@ def spectral_density(noise: AxisNoise, frequencies: np.ndarray) -> np.ndarray:
             transfer = (transfer + coefficient) * z
         short = noise.white_variance / np.abs(1.0 - transfer) ** 2
     difference = np.maximum(4.0 * np.sin(omega / 2.0) ** 2, 1e-300)  # |1 − e^{−iω}|²
-    total = short + noise.rrw_variance / difference  # TIM 2014 eq. (2): r = q / (1 − B)
-    if noise.flicker_variance:
-        total = total + noise.flicker_variance / difference**noise.flicker_d  # eq. (3): (1 − B)^{−d}
+    with np.errstate(over="ignore"):  # at ω = 0 the walk's density is unbounded: +inf is its value
+        total = short + noise.rrw_variance / difference  # TIM 2014 eq. (2): r = q / (1 − B)
+        if noise.flicker_variance:
+            total = total + noise.flicker_variance / difference**noise.flicker_d  # eq. (3): (1 − B)^{−d}
     return total
 
 
@@ -495,7 +496,10 @@ def simulate_block_sums(noise: AxisNoise, length: int, block: int, rng: np.rando
         # Σ_k k and Σ_k k² over the block, exact integer sums (the weights of W are b, b − 1, …, 1)
         linear, square = sum(range(1, block + 1)), sum(k * k for k in range(1, block + 1))
         covariance = noise.rrw_variance * np.array([[block, linear], [linear, square]], dtype=np.float64)
-        pairs = rng.multivariate_normal(np.zeros(2), covariance, count, method="cholesky")
+        if block == 1:  # I = W = q₁: the covariance is singular, and Cholesky refuses it
+            pairs = np.repeat(rng.normal(0.0, math.sqrt(noise.rrw_variance), (count, 1)), 2, axis=1)
+        else:
+            pairs = rng.multivariate_normal(np.zeros(2), covariance, count, method="cholesky")
         before = np.concatenate(([0.0], np.cumsum(pairs[:-1, 0])))
         total += block * before + pairs[:, 1]
     if noise.flicker_variance:

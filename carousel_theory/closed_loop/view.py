@@ -19,6 +19,7 @@ from carousel_theory.closed_loop.residual_model import (
     fit_residual_model,
 )
 from carousel_theory.data import Recording
+from carousel_theory.signal_checks import check_noise_signal
 
 __all__ = ["FittedEffect", "ModelSpec", "ResidualView", "build_view", "local_median_replacement"]
 
@@ -108,6 +109,8 @@ def _cleaned_axis(values: np.ndarray, axis: str, fitted: tuple[FittedEffect, ...
 def build_view(recording: Recording, axes: tuple[str, ...], spec: ModelSpec) -> ResidualView:
     """The recording's axes with ``spec``'s effects removed, each fitted with ``spec``'s terms."""
     cleaned = {axis: _cleaned_axis(recording.rates[axis], axis, spec.fitted) for axis in axes}
+    for axis in axes:  # e.g. a column that is nothing but spikes on a constant
+        check_noise_signal(cleaned[axis], f"{recording.source}: column {axis!r} once its effects are removed")
     fits = {axis: fit_residual_model(cleaned[axis], recording.sample_rate, spec.terms) for axis in axes}
     residuals = {axis: cleaned[axis] - fits[axis].bias for axis in axes}
     return ResidualView(
