@@ -61,16 +61,28 @@ PAPER_UNITS = {
 
 
 def allan_record(result: Any, output: OutputUnits) -> dict[str, Any]:
-    """The JSON record of one Allan variance: tau (s), avar and its interval (in ``output`` squared), edf,
-    clusters, and the ``units`` map."""
+    """The JSON record of one Allan variance: tau (s), avar and its interval (in ``output`` squared), adev
+    and its interval (in ``output``; finite where avar leaves float64's range), edf, clusters, and the
+    ``units`` map."""
+    adev_low, adev_high = result.adev_interval
+    deviations = {
+        "adev": output.rates(result.adev).tolist(),
+        "adev_low": output.rates(adev_low).tolist(),
+        "adev_high": output.rates(adev_high).tolist(),
+    }
     return {
         "tau": result.tau.tolist(),
         "avar": output.variances(result.avar).tolist(),
         "ci_low": output.variances(result.ci_low).tolist(),
         "ci_high": output.variances(result.ci_high).tolist(),
+        **deviations,
         "edf": None if result.edf is None else result.edf.tolist(),
         "clusters": result.clusters.tolist(),
-        "units": {"tau": "s", "avar": output.variance, "ci_low": output.variance, "ci_high": output.variance},
+        "units": {
+            "tau": "s",
+            **dict.fromkeys(("avar", "ci_low", "ci_high"), output.variance),
+            **dict.fromkeys(deviations, output.rate),
+        },
     }
 
 
