@@ -534,7 +534,7 @@ def test_found_a_plot_that_fails_to_write_closes_its_figure(tmp_path, monkeypatc
     def full_disk(*args, **kwargs):
         raise OSError(28, "No space left on device", "out.png")
 
-    monkeypatch.setattr("carousel_theory.cli.allan.atomic_output", full_disk)
+    monkeypatch.setattr("carousel_theory.plots.atomic_output", full_disk)
     signal = Signal("noise", 1e-3, 5).column(300, 0)
     recording = Recording(
         "run.csv", _csv_text(["t", "wx"], [np.arange(300) / 100.0, signal], "plain").encode()
