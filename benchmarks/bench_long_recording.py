@@ -7,9 +7,10 @@ Usage: ``python benchmarks/bench_long_recording.py [--samples 43200000] [--forma
 A seeded white + rate-random-walk recording (3 axes, 1 kHz, :func:`carousel_theory.simulate.sample_noise`)
 is written once to a temporary directory as an uncompressed NPZ (``numpy.savez``, with an ``fs`` entry)
 and/or as a CSV with a time column (written by pyarrow). Each command (``python -m carousel_theory allan
-FILE``, ``python -m carousel_theory fit FILE`` and ``python -m carousel_theory loop FILE``) then runs in its own subprocess; its wall time and its
-peak resident set size (``resource.getrusage(RUSAGE_CHILDREN).ru_maxrss`` of that process alone, read
-in a fresh wrapper process) are printed. The target is a peak below 4 GB.
+FILE``, ``python -m carousel_theory fit FILE`` and ``python -m carousel_theory loop FILE``) then runs in
+its own subprocess; its wall time and its peak resident set size
+(``resource.getrusage(RUSAGE_CHILDREN).ru_maxrss`` of that process alone, read in a fresh wrapper process)
+are printed. The target is a peak below 4 GB.
 
 With ``--keep DIR`` the recordings stay in DIR, and a recording already there (written by an earlier run
 with the same ``--samples``; its length is checked) is used again instead of being written anew.
@@ -100,7 +101,8 @@ def main() -> None:
         paths = _existing(directory, args.samples, args.format) if args.keep else None
         if paths is None:
             paths = _write(directory, args.samples, args.format)
-            print(f"wrote {args.samples} samples × 3 axes at {RATE:g} Hz in {time.perf_counter() - start:.1f} s")
+            elapsed = time.perf_counter() - start
+            print(f"wrote {args.samples} samples × 3 axes at {RATE:g} Hz in {elapsed:.1f} s")
         else:
             print(f"using the {args.samples}-sample recordings in {directory}")
         print(f"{'format':>6} {'command':>8} {'exit':>5} {'wall (s)':>9} {'peak (GB)':>10} {'file (GB)':>10}")
