@@ -679,7 +679,8 @@ def flicker_allan_variance(
     estimator = _check_estimator(estimator)
     sizes = _check_tau_samples(tau_samples, length)
     result = np.empty(len(sizes))
-    psi_sum = _cumulative_psi(float(d), length)
+    # Not the cached _cumulative_psi: an array of the record's length should not outlive this call.
+    psi_sum = np.cumsum(fractional_coefficients(float(d), length))
     for i, m in enumerate(sizes):
         if estimator == "non-overlapping":
             count = length // m
