@@ -1,14 +1,19 @@
-"""A 12-hour recording at 1 kHz (4.32·10⁷ samples × 3 axes) through ``allan`` and ``fit``: wall time and
-peak memory of each command.
+"""A 12-hour recording at 1 kHz (4.32·10⁷ samples × 3 axes) through ``allan``, ``fit`` and ``loop``: wall
+time and peak memory of each command.
 
-Usage: ``python benchmarks/bench_long_recording.py [--samples 43200000] [--format npz csv] [--keep DIR]``
+Usage: ``python benchmarks/bench_long_recording.py [--samples 43200000] [--format npz csv]
+[--commands allan fit loop] [--keep DIR]``
 
 A seeded white + rate-random-walk recording (3 axes, 1 kHz, :func:`carousel_theory.simulate.sample_noise`)
 is written once to a temporary directory as an uncompressed NPZ (``numpy.savez``, with an ``fs`` entry)
 and/or as a CSV with a time column (written by pyarrow). Each command (``python -m carousel_theory allan
-FILE`` and ``python -m carousel_theory fit FILE``) then runs in its own subprocess; its wall time and its
-peak resident set size (``resource.getrusage(RUSAGE_CHILDREN).ru_maxrss`` of that process alone, read
-in a fresh wrapper process) are printed. The target is a peak below 4 GB.
+FILE``, ``python -m carousel_theory fit FILE`` and ``python -m carousel_theory loop FILE``) then runs in
+its own subprocess; its wall time and its peak resident set size
+(``resource.getrusage(RUSAGE_CHILDREN).ru_maxrss`` of that process alone, read in a fresh wrapper process)
+are printed. The target is a peak below 4 GB.
+
+With ``--keep DIR`` the recordings stay in DIR, and a recording already there (written by an earlier run
+with the same ``--samples``; its length is checked) is used again instead of being written anew.
 """
 
 from __future__ import annotations
@@ -28,6 +33,9 @@ from carousel_theory.simulate import sample_noise
 RATE = 1000.0
 MODEL = NoiseModel(sample_rate=RATE, white_variance=3.6e-5 * 10, rrw_variance=1e-15)
 
+#: The commands measured, in this order.
+COMMANDS = ("allan", "fit", "loop")
+
 #: Runs one command in a child and prints (wall time, the child's peak RSS in kB) as its last line.
 _WRAPPER = """
 import resource, subprocess, sys, time
@@ -36,6 +44,21 @@ code = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL).returncode
 wall = time.perf_counter() - start
 print(code, wall, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
 """
+
+
+def _existing(directory: Path, samples: int, formats: list[str]) -> dict[str, Path] | None:
+    """The recordings an earlier run left in ``directory``, if all are there with ``samples`` rows."""
+    paths = {kind: directory / f"long.{kind}" for kind in formats}
+    if not all(path.exists() for path in paths.values()):
+        return None
+    if "npz" in paths and np.load(paths["npz"], mmap_mode="r")["wx"].shape[0] != samples:
+        return None
+    if "csv" in paths:
+        with paths["csv"].open("rb") as handle:
+            rows = sum(chunk.count(b"\n") for chunk in iter(lambda: handle.read(1 << 24), b""))
+        if rows != samples + 1:
+            return None
+    return paths
 
 
 def _write(directory: Path, samples: int, formats: list[str]) -> dict[str, Path]:
@@ -66,6 +89,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--samples", type=int, default=43_200_000)
     parser.add_argument("--format", nargs="+", default=["npz"], choices=("npz", "csv"))
+    parser.add_argument("--commands", nargs="+", default=list(COMMANDS), choices=COMMANDS)
     parser.add_argument(
         "--keep", type=Path, help="write the recordings here instead of a temporary directory"
     )
@@ -74,11 +98,16 @@ def main() -> None:
         directory = args.keep or Path(temporary)
         directory.mkdir(parents=True, exist_ok=True)
         start = time.perf_counter()
-        paths = _write(directory, args.samples, args.format)
-        print(f"wrote {args.samples} samples × 3 axes at {RATE:g} Hz in {time.perf_counter() - start:.1f} s")
+        paths = _existing(directory, args.samples, args.format) if args.keep else None
+        if paths is None:
+            paths = _write(directory, args.samples, args.format)
+            elapsed = time.perf_counter() - start
+            print(f"wrote {args.samples} samples × 3 axes at {RATE:g} Hz in {elapsed:.1f} s")
+        else:
+            print(f"using the {args.samples}-sample recordings in {directory}")
         print(f"{'format':>6} {'command':>8} {'exit':>5} {'wall (s)':>9} {'peak (GB)':>10} {'file (GB)':>10}")
         for kind, path in paths.items():
-            for command in ("allan", "fit"):
+            for command in args.commands:
                 code, wall, peak = _measure([sys.executable, "-m", "carousel_theory", command, str(path)])
                 size = path.stat().st_size / 1024**3
                 print(f"{kind:>6} {command:>8} {code:>5} {wall:>9.1f} {peak:>10.2f} {size:>10.2f}")

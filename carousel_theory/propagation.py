@@ -40,6 +40,7 @@ from carousel_theory._validation import (
     check_fractional_order,
     check_positive_integer,
 )
+from carousel_theory.long_memory import fft_convolve
 from carousel_theory.processes import (
     _check_process,
     _exact_rational,
@@ -153,7 +154,7 @@ def weighted_sum_variance(weights: Any, process: str, d: Any = None, *, exact: b
     if process == "rrw":
         suffix = np.cumsum(w[::-1])  # Σ_{t≥i} w_t, in reverse order (order does not matter below)
         return float(np.dot(suffix, suffix))
-    coefficients = scipy.signal.fftconvolve(w[::-1], fractional_coefficients(d, w.shape[0]))[: w.shape[0]]
+    coefficients = fft_convolve(w[::-1], fractional_coefficients(d, w.shape[0]))[: w.shape[0]]
     return float(np.dot(coefficients, coefficients))
 
 
