@@ -74,7 +74,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "τ in s."
         ),
     )
-    parser.add_argument("data", type=Path, metavar="DATA", help="recording (.csv or .npz)")
+    parser.add_argument(
+        "data",
+        type=Path,
+        metavar="DATA",
+        help="recording: text (.csv .txt .tsv), .npz, HDF5 (.h5) or MATLAB (.mat)",
+    )
     add_recording_arguments(parser)
     parser.add_argument(
         "--taus", type=_taus, default="octave", help="'octave' (default) or comma-separated τ in s"

@@ -59,7 +59,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "run-to-run consistency."
         ),
     )
-    parser.add_argument("data", type=Path, nargs="+", metavar="DATA", help="recording(s) (.csv or .npz)")
+    parser.add_argument(
+        "data",
+        type=Path,
+        nargs="+",
+        metavar="DATA",
+        help="recording(s): text (.csv .txt .tsv), .npz, HDF5 (.h5) or MATLAB (.mat)",
+    )
     add_recording_arguments(parser)
     parser.add_argument(
         "--model",

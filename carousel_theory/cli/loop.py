@@ -29,7 +29,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
             "and phi (rad), or an NPZ with the same keys."
         ),
     )
-    parser.add_argument("data", type=Path, metavar="DATA", help="recording (.csv or .npz)")
+    parser.add_argument(
+        "data",
+        type=Path,
+        metavar="DATA",
+        help="recording: text (.csv .txt .tsv), .npz, HDF5 (.h5) or MATLAB (.mat)",
+    )
     parser.add_argument(
         "--samples-per-revolution",
         "-N",

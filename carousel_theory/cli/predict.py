@@ -32,7 +32,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "With --table1: the batch test of SJ 2012 Table I on simulated data (or on the recordings "
         "in --data, one column block per gyro axis).",
     )
-    parser.add_argument("data", nargs="?", type=Path, help="a recording (CSV or NPZ) to predict")
+    parser.add_argument(
+        "data",
+        nargs="?",
+        type=Path,
+        help="a recording to predict: text (.csv .txt .tsv), .npz, HDF5 (.h5) or MATLAB (.mat)",
+    )
     parser.add_argument("--axis", default=None, help="gyro column (default: the first in the file)")
     parser.add_argument(
         "--sample-rate", type=float, help="samples per second when the file has no time column"
