@@ -18,7 +18,8 @@ from carousel_theory.closed_loop import (
     run_loop,
     uniform_resample,
 )
-from carousel_theory.closed_loop.residual_model import AxisNoise, short_noise_allan
+from carousel_theory.closed_loop.residual_model import FittedNoise, uniform_bin_variances
+from carousel_theory.noise_model import NoiseModel
 from carousel_theory.data import recording_from_arrays
 from carousel_theory.effects import CATALOGUE
 from carousel_theory.simulate import simulate_recording
@@ -106,19 +107,17 @@ def test_carouselled_bins_match_the_predicted_variance_on_the_declared_model():
     )
 
 
-def test_short_noise_allan_variance_against_the_definition():
-    """Allan variance of an AR(1) short noise from its autocovariance, against the quadratic form of the
-    cluster-mean difference with the exact Toeplitz covariance (dense, small m)."""
-    noise = AxisNoise(1.0, 0.0, 2.0, ar_coefficients=(0.5,))
-    gamma = noise.short_autocovariance()
-    for m in (1, 2, 3, 7):
-        weights = np.concatenate((-np.ones(m), np.ones(m))) / m
-        lags = np.abs(np.subtract.outer(np.arange(2 * m), np.arange(2 * m)))
-        covariance = gamma[lags]
-        expected = 0.5 * weights @ covariance @ weights
-        assert short_noise_allan(noise, np.array([m]))[0] == pytest.approx(expected, rel=1e-12)
-    # AR(1) autocovariance: σ² φ^h / (1 − φ²)
-    assert gamma[:4] == pytest.approx(2.0 * 0.5 ** np.arange(4) / 0.75, rel=1e-12)
+def test_bin_variance_of_ar_short_noise_against_the_definition():
+    """Variance of a weighted bin of an AR(1) short noise, against the quadratic form wᵀΓw with the
+    AR(1) autocovariance σ² φ^h / (1 − φ²) written out in a dense Toeplitz matrix (small bins)."""
+    noise = FittedNoise(NoiseModel(1.0, ar_variance=2.0, ar_coefficients=(0.5,)), {})
+    rng = np.random.default_rng(3)
+    for length in (1, 2, 3, 7):
+        weights = rng.standard_normal(length)
+        lags = np.abs(np.subtract.outer(np.arange(length), np.arange(length)))
+        covariance = 2.0 * 0.5**lags / 0.75
+        expected = weights @ covariance @ weights
+        assert uniform_bin_variances(noise, weights, 2) == pytest.approx([expected] * 2, rel=1e-12)
 
 
 def test_one_axis_is_averaging_only():
@@ -251,7 +250,7 @@ def test_block_sums_of_the_fitted_model_have_the_exact_covariance():
     from carousel_theory.closed_loop.residual_model import simulate_block_sums
 
     block, count = 3, 1_000_000
-    noise = AxisNoise(100.0, 0.0, 1.0, rrw_variance=1.0)
+    noise = FittedNoise(NoiseModel(100.0, white_variance=1.0, rrw_variance=1.0), {})
     sums = simulate_block_sums(noise, block * count, block, np.random.default_rng(11))
     differences = np.diff(sums)
     variance, lag_one = _exact_difference_moments(block)
@@ -277,7 +276,11 @@ def test_misfit_test_rejects_an_undeclared_walk_at_long_tau_and_not_the_declared
     assert not misfit_test({"wx": white}, fits, 0.0025).rejects
     walked = white + np.cumsum(rng.normal(0.0, 3e-5, 60_000))
     fit = fit_residual_model(walked, 100.0, ModelTerms())
-    white_only = replace(fit, noise=replace(fit.noise, rrw_variance=0.0), model=fit.observed[0] / fit.sizes)
+    white_only = replace(
+        fit,
+        noise=replace(fit.noise, model=replace(fit.noise.model, rrw_variance=0.0)),
+        model=fit.observed[0] / fit.sizes,
+    )
     test = misfit_test({"wx": walked}, {"wx": white_only}, 0.0025)
     assert test.rejects and test.p_value <= 0.0025
 

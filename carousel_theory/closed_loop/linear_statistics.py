@@ -17,7 +17,7 @@ from scipy import stats
 from scipy.linalg import solveh_banded
 
 from carousel_theory.closed_loop.residual_model import (
-    AxisNoise,
+    FittedNoise,
     ModelTerms,
     ResidualFit,
     bounded_noise,
@@ -65,17 +65,17 @@ def _expand(view: ResidualView, block_weights: np.ndarray) -> np.ndarray:
     return np.concatenate((expanded, np.zeros(len(view.time) - len(expanded))))
 
 
-def _bands(view: ResidualView, noise: AxisNoise) -> np.ndarray:
+def _bands(view: ResidualView, noise: FittedNoise) -> np.ndarray:
     block = gls_block(view)
     return difference_covariance_bands(noise, block, len(view.time) // block - 1)
 
 
-def _noise(view: ResidualView, axis: str, noise: AxisNoise | None) -> AxisNoise:
+def _noise(view: ResidualView, axis: str, noise: FittedNoise | None) -> FittedNoise:
     return view.fits[axis].noise if noise is None else noise
 
 
 def gls_weights(
-    view: ResidualView, axis: str, regressor: np.ndarray, noise: AxisNoise | None = None
+    view: ResidualView, axis: str, regressor: np.ndarray, noise: FittedNoise | None = None
 ) -> np.ndarray:
     """Sample weights w of the GLS projection on ``regressor``: w = Dᵀ Σ_Δ⁻¹ D g, D the first difference
     (which also removes the bias), Σ_Δ the tridiagonal covariance of the differences."""
@@ -111,7 +111,7 @@ def step_scan(view: ResidualView, axis: str) -> StepScan:
     return StepScan(u, weights, float(solved[len(u) // 2]))
 
 
-def refit(view: ResidualView, axis: str, signal: np.ndarray, terms: ModelTerms | None = None) -> AxisNoise:
+def refit(view: ResidualView, axis: str, signal: np.ndarray, terms: ModelTerms | None = None) -> FittedNoise:
     """The noise model of the axis refitted on its residual minus ``signal`` (the view's terms, or
     ``terms``), with the same Allan-variance weights as the view's fit."""
     fit = fit_residual_model(
@@ -169,7 +169,7 @@ def _competing_terms(
     return (terms if p_value < COMPETING_TERM_LEVEL else ModelTerms(terms.ar_order)), p_value
 
 
-def ranking_noise(view: ResidualView, axis: str) -> AxisNoise:
+def ranking_noise(view: ResidualView, axis: str) -> FittedNoise:
     """The noise model under which the points of a scan are ranked: the view's, or, when a 1/f term the
     model lacks is asked for by the residual itself (:func:`_competing_terms`), the fit with it."""
     terms = ModelTerms(view.spec.terms.ar_order, flicker=True)
@@ -198,7 +198,7 @@ def regressor_test(
     *,
     quick: bool = False,
     refit_terms: ModelTerms | None = None,
-    ranking: AxisNoise | None = None,
+    ranking: FittedNoise | None = None,
 ) -> RegressorTest:
     """The GLS statistic Σ w_t e_t of ``regressor`` and its z under the fitted model.
 
