@@ -19,9 +19,9 @@ from carousel_theory.closed_loop import (
     uniform_resample,
 )
 from carousel_theory.closed_loop.residual_model import FittedNoise, uniform_bin_variances
-from carousel_theory.noise_model import NoiseModel
 from carousel_theory.data import recording_from_arrays
 from carousel_theory.effects import CATALOGUE
+from carousel_theory.noise_model import NoiseModel
 from carousel_theory.simulate import simulate_recording
 
 SAMPLES, RATE, WHITE, WALK = 30_000, 100.0, 3.6e-5, 1e-11
