@@ -76,7 +76,11 @@ class ColoredNoiseDetector:
 
 
 class FlickerDetector:
-    """F = Δχ² / max(1, χ²/ν) of the Allan-variance fit when a 1/f (d = 1/2) term is added; F(1, ν)."""
+    """Δχ² / max(1, χ²/ν) of the GLS Allan-variance fit when a 1/f (d = 1/2) term is added.
+
+    The fits share the model-based covariance across τ (:mod:`carousel_theory.fitting`), so Δχ² is χ²₁
+    under the model; when the larger fit misfits (χ²/ν > 1) its dispersion scales Δχ², which is then
+    referred to F(1, ν) (an estimated scale)."""
 
     name = "flicker"
     stochastic = True
@@ -88,10 +92,12 @@ class FlickerDetector:
             without, _ = nested_chi_square(view, axis, flicker=False)
             with_flicker, dof = nested_chi_square(view, axis, flicker=True)
             dof = max(dof, 1)
-            # The gain over the residual dispersion of the larger fit (at least 1), so that Allan points
-            # correlated across τ or a model slightly off elsewhere do not pass for 1/f noise.
-            statistic = max(0.0, without - with_flicker) / max(1.0, with_flicker / dof)
-            log10_p = min(0.0, math.log10(tests) + float(stats.f.logsf(statistic, 1, dof)) / math.log(10.0))
+            # The gain over the residual dispersion of the larger fit (at least 1), so that a model
+            # slightly off elsewhere does not pass for 1/f noise.
+            dispersion = with_flicker / dof
+            statistic = max(0.0, without - with_flicker) / max(1.0, dispersion)
+            log_sf = stats.f.logsf(statistic, 1, dof) if dispersion > 1.0 else stats.chi2.logsf(statistic, 1)
+            log10_p = min(0.0, math.log10(tests) + float(log_sf) / math.log(10.0))
             if log10_p < math.log10(alpha):
                 axes.append(axis)
             if log10_p < best_log10_p:
@@ -99,8 +105,8 @@ class FlickerDetector:
         return Detection(
             self.name,
             best_statistic,
-            "F of the Allan-variance fit with a 1/f term",
-            float(stats.f.isf(alpha / tests, 1, best_dof)),
+            "Δχ² of the Allan-variance fit with a 1/f term (over its dispersion when above 1)",
+            float(stats.chi2.isf(alpha / tests, 1)),
             min(0.0, best_log10_p),
             bool(axes),
             tuple(axes),
