@@ -9,46 +9,76 @@ need a uniform sample rate (the Allan variance) refuse it. Files are only ever o
 
 Long recordings (12 h at 1 kHz is 4.3·10⁷ rows)
     CSV is parsed by ``pyarrow.csv`` when pyarrow is installed (the ``data`` extra; the core needs only
-    NumPy): its streaming reader parses blocks of 4 MB on all cores (larger blocks in flight cost memory) straight into float64 columns,
-    without holding the text in memory, about ten times faster than ``numpy.loadtxt``; the columns are
-    joined one at a time, so the peak is about one extra column; pandas' C engine is as fast on one
-    core but names neither the row nor the column of a bad value. Without pyarrow, ``numpy.loadtxt`` is
-    used. When the fast parser refuses a file, the file is scanned once more, line by line, to name the
-    row (counted from 0, header excluded) and the column of the first bad field. Only the first 4 KiB are
-    read to check the header and that the file is text.
+    NumPy): its streaming reader parses blocks of 4 MB on all cores (larger blocks in flight cost memory)
+    straight into float64 columns, without holding the text in memory, about ten times faster than
+    ``numpy.loadtxt``; the columns are joined one at a time, so the peak is about one extra column;
+    pandas' C engine is as fast on one core but names neither the row nor the column of a bad value.
+    Without pyarrow, ``numpy.loadtxt`` is used. When the fast parser refuses a file, the file is scanned
+    once more, line by line, to name the row (counted from 0, header excluded) and the column of the first
+    bad field; that scan reads lines of at most ``MAX_LINE_BYTES``. The first ``BINARY_CHECK_BYTES`` (64
+    KiB) are read to check the header and that the file is text (no NUL byte, valid UTF-8) before the rest
+    is parsed.
     An NPZ written without compression (``numpy.savez``) is memory-mapped, read-only: its arrays are
     paged in as the analysis touches them. A compressed NPZ (``savez_compressed``) is decompressed into
-    memory.
+    memory. The headers of all members are read first: a file whose headers declare more than
+    ``max_values`` values (default ``MAX_VALUES``), or whose zip directory states an uncompressed size
+    other than the header's shape implies, is refused before anything is expanded.
+
+Timestamps
+    A numeric time column is in s unless ``time_unit`` says ms, us or ns; ``datetime64`` and
+    ``timedelta64`` columns are converted from their own unit. The first timestamp is subtracted
+    before scaling (in integer arithmetic for integer and date columns), so epoch timestamps keep
+    their steps exact; the recording's ``time`` counts from it and ``time_origin`` keeps it.
 """
 
 from __future__ import annotations
 
+import codecs
 import csv
 import math
 import zipfile
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from itertools import islice
+from itertools import count
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from carousel_theory._validation import check_positive_real
+from carousel_theory._validation import check_positive_integer, check_positive_real
 from carousel_theory.units import rate_to_rad_per_s
 
-__all__ = ["Recording", "load_recording", "recording_from_arrays"]
+__all__ = [
+    "MAX_VALUES",
+    "RESERVED_COLUMN_NAMES",
+    "TIME_UNITS",
+    "Recording",
+    "load_recording",
+    "recording_from_arrays",
+]
 
 #: Relative spread of the time steps tolerated as "uniform" (clock jitter of float timestamps).
 UNIFORM_TOLERANCE = 1e-6
 #: A time step longer than this many nominal steps is reported as a gap.
 GAP_FACTOR = 1.5
+#: Most values (all columns together) a reader expands into memory unless the caller raises the limit
+#: (``max_values=``, ``--max-values``): 10⁹ values are 8 GB as float64, 12 h at 1 kHz of 23 columns.
+MAX_VALUES = 10**9
+#: Seconds per unit of a numeric time column (``time_unit=``, ``--time-unit``).
+TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
+#: Bytes of a CSV file checked for binary content (NUL bytes, invalid UTF-8) before it is parsed; the
+#: header row must end within them.
+BINARY_CHECK_BYTES = 1 << 16
+#: Longest line the scan that names a bad CSV field reads; a longer one is refused, not held in memory.
+MAX_LINE_BYTES = 1 << 20
 
 _TIME_NAMES = ("t", "time", "time_s", "timestamp")
 _TEMPERATURE_NAMES = ("temp", "temperature")
 _ANGLE_NAMES = ("phi", "angle")
 _RATE_PREFIXES = ("w", "gyro", "omega")
 _NON_RATE_NAMES = {"t_raw", "fs", "sample_rate"}
+#: Column names (compared in lower case) the readers give a role other than a gyro axis.
+RESERVED_COLUMN_NAMES = frozenset((*_TIME_NAMES, *_TEMPERATURE_NAMES, *_ANGLE_NAMES, *_NON_RATE_NAMES))
 
 
 @dataclass(frozen=True)
@@ -70,7 +100,11 @@ class Recording:
     source : str
         Where the data came from (a path or "arrays").
     uniform : bool
-        True when the timestamps are uniform within ``UNIFORM_TOLERANCE`` and have no gaps.
+        True when the timestamps are uniform within ``UNIFORM_TOLERANCE`` (or the resolution of the
+        timestamps, when coarser) and have no gaps.
+    time_origin : float
+        The first timestamp of the file in s (since the epoch for an epoch or ``datetime64`` clock);
+        ``time`` counts from it, so that ``time[0] == 0`` and its steps keep full precision.
     """
 
     time: np.ndarray
@@ -81,6 +115,7 @@ class Recording:
     source: str = "arrays"
     uniform: bool = True
     notes: tuple[str, ...] = field(default=())
+    time_origin: float = 0.0
 
     @property
     def duration(self) -> float:
@@ -100,6 +135,14 @@ class Recording:
 
 
 def _check_column(name: str, values: Any, source: str, expected_length: int | None) -> np.ndarray:
+    kind = (values.dtype if hasattr(values, "dtype") else np.asarray(values).dtype).kind
+    if kind == "c":
+        raise TypeError(
+            f"{source}: column {name!r} holds complex numbers; it must hold real numbers (the imaginary "
+            "part would be lost; pass np.real(...) or np.abs(...) explicitly if that is what is meant)"
+        )
+    if kind in "mM":
+        raise TypeError(f"{source}: column {name!r} holds dates or durations; only a time column may")
     try:
         array = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError) as error:
@@ -120,19 +163,27 @@ def _check_column(name: str, values: Any, source: str, expected_length: int | No
     return array
 
 
-def _check_timing(time: np.ndarray, source: str, irregular: str) -> tuple[float, bool, tuple[str, ...]]:
-    """Return (sample rate, uniform, notes) or raise on non-monotonic / irregular timestamps."""
+def _check_timing(
+    time: np.ndarray, resolution: float, source: str, irregular: str
+) -> tuple[float, bool, tuple[str, ...]]:
+    """Return (sample rate, uniform, notes) or raise on non-monotonic / irregular timestamps.
+
+    ``time`` counts from the first timestamp (computed exactly, see :func:`_time_offsets`); a step
+    counts as uneven when it differs from the median step by more than ``UNIFORM_TOLERANCE`` relative
+    plus ``resolution``, the uncertainty of one step that the timestamps' own precision allows.
+    """
     steps = np.diff(time)
     bad = np.flatnonzero(steps <= 0)
     if bad.size:
         i = int(bad[0])
         raise ValueError(
             f"{source}: timestamps are not strictly increasing: t[{i}]={time[i]!r} then "
-            f"t[{i + 1}]={time[i + 1]!r} ({bad.size} such steps)"
+            f"t[{i + 1}]={time[i + 1]!r} s after the first ({bad.size} such steps)"
         )
     nominal = float(np.median(steps))
-    gaps = np.flatnonzero(steps > GAP_FACTOR * nominal)
-    uneven = np.flatnonzero(np.abs(steps - nominal) > UNIFORM_TOLERANCE * nominal)
+    tolerance = UNIFORM_TOLERANCE * nominal + resolution
+    gaps = np.flatnonzero(steps > GAP_FACTOR * nominal + resolution)
+    uneven = np.flatnonzero(np.abs(steps - nominal) > tolerance)
     notes: list[str] = []
     if gaps.size:
         i = int(gaps[0])
@@ -144,7 +195,8 @@ def _check_timing(time: np.ndarray, source: str, irregular: str) -> tuple[float,
         i = int(uneven[0])
         notes.append(
             f"non-uniform timestamps: {uneven.size} steps differ from the median step {nominal:.6g} s by "
-            f"more than {UNIFORM_TOLERANCE:g} relative; the first is t[{i + 1}]-t[{i}]={steps[i]:.6g} s"
+            f"more than {tolerance:.3g} s ({UNIFORM_TOLERANCE:g} relative + the timestamps' resolution "
+            f"{resolution:.3g} s); the first is t[{i + 1}]-t[{i}]={steps[i]:.6g} s"
         )
     if notes and irregular == "refuse":
         raise ValueError(
@@ -155,10 +207,12 @@ def _check_timing(time: np.ndarray, source: str, irregular: str) -> tuple[float,
     if notes:
         # The nominal rate of irregular data is the mean rate, not the median: it keeps duration right.
         return (len(time) - 1) / float(time[-1] - time[0]), False, tuple(notes)
-    # The mean rate over the whole record, rounded to 9 significant digits: float timestamps such as
-    # i/100 carry rounding that would otherwise leak into every τ (0.00999999999999801 s).
-    rate = (len(time) - 1) / float(time[-1] - time[0])
-    return float(f"{rate:.9g}"), True, ()
+    # The mean rate over the whole record, rounded to 9 significant digits, or fewer when the
+    # timestamps' resolution allows fewer (epoch seconds in float64: 2.4·10⁻⁷ s): float timestamps such
+    # as i/100 carry rounding that would otherwise leak into every τ (0.00999999999999801 s).
+    span = float(time[-1] - time[0])
+    digits = 9 if resolution <= 0 else min(9, max(1, math.floor(-math.log10(resolution / span))))
+    return float(f"{(len(time) - 1) / span:.{digits}g}"), True, ()
 
 
 def recording_from_arrays(
@@ -171,6 +225,7 @@ def recording_from_arrays(
     units: str = "rad/s",
     source: str = "arrays",
     irregular: str = "refuse",
+    time_unit: str | None = None,
 ) -> Recording:
     """Build a checked :class:`Recording` from arrays.
 
@@ -180,7 +235,9 @@ def recording_from_arrays(
         The gyro columns, in ``units``. A DataFrame contributes every column (use ``time=`` etc. for the
         others, or pass ``df[["wx", "wy"]]``).
     time : 1-D array, optional
-        Sample times in s. Without it, ``sample_rate`` is required and ``t = index / sample_rate``.
+        Sample times in ``time_unit`` (numbers) or ``datetime64``/``timedelta64`` values. The
+        recording's ``time`` counts from the first of them (kept as ``time_origin``). Without it,
+        ``sample_rate`` is required and ``t = index / sample_rate``.
     sample_rate : float, optional
         Samples per second. With ``time`` as well, the two must agree to 1e-6 relative.
     temperature, angle : 1-D arrays, optional
@@ -189,11 +246,36 @@ def recording_from_arrays(
         Units of ``rates``.
     irregular : {"refuse", "keep"}
         What to do with gaps or non-uniform timestamps.
+    time_unit : {"s", "ms", "us", "ns"}, optional
+        Unit of a numeric time column (default s), e.g. "ms" for epoch milliseconds. Not allowed with a
+        ``datetime64``/``timedelta64`` column, which carries its own unit.
     """
-    if irregular not in ("refuse", "keep"):
-        raise ValueError(f"irregular={irregular!r}: must be 'refuse' or 'keep'")
-    if not isinstance(source, str):
-        raise TypeError(f"source={source!r}: must be a string")
+    _check_reading_options(irregular, time_unit, source)
+    rates = _rate_mapping(rates, source)
+    if sample_rate is not None:
+        sample_rate = float(check_positive_real("sample_rate", sample_rate))
+    converted = _converted_rates(rates, units, source)
+    length = len(next(iter(converted.values())))
+    axis = _time_axis(time, sample_rate, length, source, irregular, time_unit)
+    temperature_array = (
+        None if temperature is None else _check_column("temperature", temperature, source, length)
+    )
+    angle_array = None if angle is None else _check_column("angle", angle, source, length)
+    return Recording(
+        time=axis.time,
+        rates=converted,
+        sample_rate=float(axis.sample_rate),
+        temperature=temperature_array,
+        angle=angle_array,
+        source=source,
+        uniform=axis.uniform,
+        notes=axis.notes,
+        time_origin=axis.origin,
+    )
+
+
+def _rate_mapping(rates: Any, source: str) -> Mapping[str, Any]:
+    """``rates`` as a non-empty mapping of column name to values (a DataFrame's columns)."""
     if hasattr(rates, "columns") and hasattr(rates, "to_numpy"):  # a DataFrame, without importing pandas
         rates = {str(name): rates[name].to_numpy() for name in rates.columns}
     if not isinstance(rates, Mapping):
@@ -202,25 +284,16 @@ def recording_from_arrays(
         )
     if len(rates) == 0:
         raise ValueError(f"{source}: no gyro columns (rates is empty)")
-    if sample_rate is not None:
-        sample_rate = float(check_positive_real("sample_rate", sample_rate))
-    converted = _converted_rates(rates, units, source)
-    length = len(next(iter(converted.values())))
-    time_array, rate, uniform, notes = _time_axis(time, sample_rate, length, source, irregular)
-    temperature_array = (
-        None if temperature is None else _check_column("temperature", temperature, source, length)
-    )
-    angle_array = None if angle is None else _check_column("angle", angle, source, length)
-    return Recording(
-        time=time_array,
-        rates=converted,
-        sample_rate=float(rate),
-        temperature=temperature_array,
-        angle=angle_array,
-        source=source,
-        uniform=uniform,
-        notes=notes,
-    )
+    return rates
+
+
+def _check_reading_options(irregular: Any, time_unit: Any, source: Any) -> None:
+    if irregular not in ("refuse", "keep"):
+        raise ValueError(f"irregular={irregular!r}: must be 'refuse' or 'keep'")
+    if time_unit is not None and time_unit not in TIME_UNITS:
+        raise ValueError(f"time_unit={time_unit!r}: must be one of {', '.join(TIME_UNITS)}")
+    if not isinstance(source, str):
+        raise TypeError(f"source={source!r}: must be a string")
 
 
 def _converted_rates(rates: Mapping[str, Any], units: str, source: str) -> dict[str, np.ndarray]:
@@ -240,23 +313,87 @@ def _converted_rates(rates: Mapping[str, Any], units: str, source: str) -> dict[
     return converted
 
 
+@dataclass(frozen=True)
+class _TimeAxis:
+    """A time column counted from its first timestamp, in s, and what the timing check found."""
+
+    time: np.ndarray
+    sample_rate: float
+    uniform: bool
+    notes: tuple[str, ...]
+    origin: float = 0.0
+
+
 def _time_axis(
-    time: Any, sample_rate: float | None, length: int, source: str, irregular: str
-) -> tuple[np.ndarray, float, bool, tuple[str, ...]]:
-    """(time, sample rate, uniform, notes) from a time column or from the sample rate."""
+    time: Any, sample_rate: float | None, length: int, source: str, irregular: str, time_unit: str | None
+) -> _TimeAxis:
+    """The time axis from a time column or from the sample rate."""
     if time is None:
         if sample_rate is None:
             raise ValueError(f"{source}: no time column and no sample_rate; give one of them")
-        return np.arange(length, dtype=np.float64) / sample_rate, sample_rate, True, ()
-    time_array = _check_column("time", time, source, length)
-    rate, uniform, notes = _check_timing(time_array, source, irregular)
+        if time_unit is not None:
+            raise ValueError(f"time_unit={time_unit!r}: given, but {source} has no time column")
+        return _TimeAxis(np.arange(length, dtype=np.float64) / sample_rate, sample_rate, True, ())
+    offsets, origin, resolution = _time_offsets(time, time_unit, source, length)
+    rate, uniform, notes = _check_timing(offsets, resolution, source, irregular)
     if sample_rate is not None and uniform and abs(rate - sample_rate) > 1e-6 * sample_rate:
         raise ValueError(
             f"{source}: sample_rate={sample_rate!r} disagrees with the time column ({rate:.9g} Hz)"
         )
     if sample_rate is not None and uniform:
         rate = sample_rate
-    return time_array, rate, uniform, notes
+    return _TimeAxis(offsets, rate, uniform, notes, origin)
+
+
+def _time_offsets(
+    time: Any, time_unit: str | None, source: str, length: int
+) -> tuple[np.ndarray, float, float]:
+    """(seconds after the first timestamp, the first timestamp in s, the resolution of a step in s).
+
+    The first timestamp is subtracted before scaling to seconds, exactly: in integer arithmetic for
+    integer and ``datetime64``/``timedelta64`` columns; for floats the differences of neighbouring
+    floats are exact (Sterbenz), and the resolution is two float spacings at the largest timestamp, so
+    epoch seconds at 100 Hz (1700000000.01, spacing 2.4·10⁻⁷ s) are not mistaken for jitter.
+    """
+    raw = time if hasattr(time, "dtype") else np.asarray(time)
+    kind = raw.dtype.kind
+    if kind in "mM":
+        return _datetime_offsets(np.asarray(raw), time_unit, source, length)
+    scale = TIME_UNITS["s" if time_unit is None else time_unit]
+    if kind in "iu":
+        _check_column("time", raw, source, length)  # the shape and the length
+        integers = np.asarray(raw).astype(np.int64)
+        first = int(raw[0])
+        return (integers - integers[0]).astype(np.float64) * scale, first * scale, scale
+    array = _check_column("time", raw, source, length)
+    first_value = float(array[0])
+    largest = float(np.max(np.abs(array[[0, -1]])))
+    offsets = array - first_value if first_value else array
+    if scale != 1.0:
+        offsets = offsets * scale
+    return offsets, first_value * scale, 2.0 * float(np.spacing(largest)) * scale
+
+
+def _datetime_offsets(
+    raw: np.ndarray, time_unit: str | None, source: str, length: int
+) -> tuple[np.ndarray, float, float]:
+    """:func:`_time_offsets` for ``datetime64``/``timedelta64``: their unit is their own."""
+    if time_unit is not None:
+        raise ValueError(
+            f"time_unit={time_unit!r}: the time column of {source} is {raw.dtype}, which carries its own "
+            "unit; leave time_unit unset"
+        )
+    unit, count = np.datetime_data(raw.dtype)
+    if unit in ("Y", "M", "generic"):
+        raise ValueError(f"{source}: time column of dtype {raw.dtype}: months and years have no fixed length")
+    if raw.ndim != 1 or len(raw) != length:
+        raise ValueError(f"{source}: column 'time' must be 1-dimensional with {length} samples")
+    missing = np.flatnonzero(np.isnat(raw))
+    if missing.size:
+        raise ValueError(f"{source}: column 'time' holds NaT at row {int(missing[0])} (counted from 0)")
+    tick = float(np.array(count, dtype=f"m8[{unit}]") / np.timedelta64(1, "s"))
+    integers = raw.view(np.int64)
+    return (integers - integers[0]).astype(np.float64) * tick, int(integers[0]) * tick, tick
 
 
 def _is_rate_name(name: str) -> bool:
@@ -275,7 +412,7 @@ def _pick(names: list[str], candidates: tuple[str, ...]) -> str | None:
     return None
 
 
-def _read_npz(path: Path) -> dict[str, np.ndarray]:
+def _read_npz(path: Path, max_values: int) -> dict[str, np.ndarray]:
     with path.open("rb") as handle:
         magic = handle.read(4)
     if magic != b"PK\x03\x04":
@@ -283,13 +420,61 @@ def _read_npz(path: Path) -> dict[str, np.ndarray]:
     try:
         with zipfile.ZipFile(path) as archive:
             members = [info for info in archive.infolist() if info.filename.endswith(".npy")]
+            values = sum(_member_values(archive, info, path) for info in members)
+            _check_values(values, max_values, path, "its arrays' headers declare")
             mapped = {info.filename[:-4]: _mapped_member(path, info) for info in members}
         if all(array is not None for array in mapped.values()):
             return {name: array for name, array in mapped.items() if array is not None}
         with np.load(path, allow_pickle=False) as loaded:
             return {name: np.asarray(loaded[name]) for name in loaded.files}
     except (ValueError, OSError, zipfile.BadZipFile) as error:
-        raise ValueError(f"{path}: not a readable NPZ file ({error})") from None
+        message = str(error)
+        if not message.startswith(str(path)):
+            message = f"{path}: not a readable NPZ file ({error})"
+        raise ValueError(message) from None
+
+
+def _check_values(values: int, max_values: int, path: Path, what: str) -> None:
+    """Refuse, before expanding them, more values than ``max_values``."""
+    if values > max_values:
+        raise ValueError(
+            f"{path}: {what} {values} values ({values * 8 / 1e9:.3g} GB as float64), more than "
+            f"max_values={max_values} (the default {MAX_VALUES} is 8 GB); raise max_values "
+            "(--max-values) if the machine has the memory"
+        )
+
+
+def _npy_header(handle: Any) -> tuple[tuple[int, ...], bool, np.dtype]:
+    """(shape, Fortran order, dtype) from the header of an .npy stream, leaving it at the data."""
+    version = np.lib.format.read_magic(handle)
+    read_header = (
+        np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
+    )
+    return read_header(handle)
+
+
+def _member_values(archive: zipfile.ZipFile, info: zipfile.ZipInfo, path: Path) -> int:
+    """The number of values an .npy member's header declares, checked against the zip directory.
+
+    Only the header is read (decompressing a few hundred bytes): the shape it declares bounds what the
+    member expands to, and the uncompressed size the zip directory states must match it exactly, so a
+    deflate bomb or a header claiming 10¹² samples is refused before anything is expanded.
+    """
+    with archive.open(info) as member:
+        shape, _, dtype = _npy_header(member)
+        header_bytes = member.tell()
+    if dtype.hasobject:
+        raise ValueError(
+            f"{path}: member {info.filename!r} holds Python objects ({dtype}); only numbers are read"
+        )
+    values = math.prod(int(n) for n in shape)
+    expected = header_bytes + values * dtype.itemsize
+    if info.file_size != expected:
+        raise ValueError(
+            f"{path}: member {info.filename!r} declares shape {shape} of {dtype} ({expected} bytes with its "
+            f"header) but the zip directory says it holds {info.file_size} bytes; the file is corrupt"
+        )
+    return values
 
 
 def _mapped_member(path: Path, info: zipfile.ZipInfo) -> np.ndarray | None:
@@ -306,11 +491,7 @@ def _mapped_member(path: Path, info: zipfile.ZipInfo) -> np.ndarray | None:
             int.from_bytes(local[28:30], "little"),
         )
         handle.seek(info.header_offset + 30 + name_length + extra_length)
-        version = np.lib.format.read_magic(handle)
-        read_header = (
-            np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
-        )
-        shape, fortran_order, dtype = read_header(handle)
+        shape, fortran_order, dtype = _npy_header(handle)
         offset = handle.tell()
     if dtype.hasobject:
         return None
@@ -322,15 +503,28 @@ def _mapped_member(path: Path, info: zipfile.ZipInfo) -> np.ndarray | None:
 
 
 def _csv_header(path: Path) -> tuple[list[str], str]:
-    """(column names, delimiter) from the first line; refuses binary or non-UTF-8 content."""
+    """(column names, delimiter) from the first line; refuses binary or non-UTF-8 content.
+
+    Only the first ``BINARY_CHECK_BYTES`` are read here: a binary file (NUL bytes, a zip archive, bytes
+    that are not UTF-8) is refused before the rest of it is touched, and the header row must end in them.
+    """
     with path.open("rb") as handle:
-        head = handle.read(4096)
+        head = handle.read(BINARY_CHECK_BYTES)
+    whole = len(head) < BINARY_CHECK_BYTES
     if b"\x00" in head or head[:4] == b"PK\x03\x04":
-        raise ValueError(f"{path}: not a CSV text file (binary content)")
+        raise ValueError(f"{path}: not a CSV text file (binary content in the first {len(head)} bytes)")
     try:
-        text = head.decode("utf-8-sig") if len(head) < 4096 else head[:4000].decode("utf-8-sig", "ignore")
+        # An incremental decoder accepts a character cut by the block's end, and nothing else invalid.
+        text = codecs.getincrementaldecoder("utf-8-sig")().decode(head, final=whole)
     except UnicodeDecodeError as error:
-        raise ValueError(f"{path}: not a CSV text file (not UTF-8: {error})") from None
+        raise ValueError(
+            f"{path}: not a CSV text file (not UTF-8 at byte {error.start} of the first block)"
+        ) from None
+    if not whole and "\n" not in text and "\r" not in text:
+        raise ValueError(
+            f"{path}: not a CSV file (no line break in the first {BINARY_CHECK_BYTES} bytes: the header "
+            "row is missing or the file is not line-oriented text)"
+        )
     lines = text.splitlines()
     if not lines or not lines[0].strip():
         raise ValueError(f"{path}: empty CSV file (no header row)")
@@ -345,30 +539,38 @@ def _csv_header(path: Path) -> tuple[list[str], str]:
         raise ValueError(f"{path}: the first row {header_line!r} is not a header row (it holds numbers)")
     if len(set(header)) != len(header):
         raise ValueError(f"{path}: repeated column names in the header {header}")
-    if len(lines) < 2 and len(head) < 4096:
+    if len(lines) < 2 and whole:
         raise ValueError(f"{path}: the CSV file has a header but no data rows")
     return header, delimiter
 
 
-def _read_csv(path: Path) -> dict[str, np.ndarray]:
+def _read_csv(path: Path, max_values: int) -> dict[str, np.ndarray]:
     header, delimiter = _csv_header(path)
     try:
         import pyarrow as arrow
         import pyarrow.csv as arrow_csv
     except ImportError:
-        return _read_csv_numpy(path, header, delimiter)
+        return _read_csv_numpy(path, header, delimiter, max_values)
     chunks: dict[str, list[np.ndarray]] = {name: [] for name in header}
+    rows = 0
     try:
         reader = arrow_csv.open_csv(
             path,
             read_options=arrow_csv.ReadOptions(skip_rows=1, column_names=header, block_size=1 << 22),
             parse_options=arrow_csv.ParseOptions(delimiter=delimiter),
-            convert_options=arrow_csv.ConvertOptions(column_types=dict.fromkeys(header, arrow.float64())),
+            convert_options=arrow_csv.ConvertOptions(
+                column_types=dict.fromkeys(header, arrow.float64()), null_values=[""]  # "nan" stays NaN
+            ),
             memory_pool=arrow.system_memory_pool(),  # freed blocks go back to the system at once
         )
+        offset = 0
         for batch in reader:  # batch by batch: the text is never held whole, and Arrow's buffers are freed
+            rows += batch.num_rows
+            _check_values(rows * len(header), max_values, path, f"its first {rows} rows already hold")
             for index, name in enumerate(header):
+                _refuse_empty_fields(path, name, batch.column(index), offset)
                 chunks[name].append(batch.column(index).to_numpy(zero_copy_only=False))
+            offset += batch.num_rows
     except (arrow.ArrowInvalid, UnicodeDecodeError) as error:
         where = _locate_bad_field(path, header, delimiter, error)
         raise ValueError(f"{path}: unreadable CSV data ({where})") from None
@@ -381,11 +583,34 @@ def _read_csv(path: Path) -> dict[str, np.ndarray]:
     return columns
 
 
+def _refuse_empty_fields(path: Path, name: str, column: Any, offset: int) -> None:
+    """An empty field parses as null: name its row (a file cut in the middle of a row ends this way)."""
+    if column.null_count:
+        first = offset + int(np.flatnonzero(column.is_null().to_numpy(zero_copy_only=False))[0])
+        raise ValueError(
+            f"{path}: unreadable CSV data (row {first} (counted from 0, header excluded), column {name!r} "
+            "is empty: a row with a missing value, or a file cut off in the middle of its last row)"
+        )
+
+
 def _locate_bad_field(path: Path, header: list[str], delimiter: str, error: Exception) -> str:
-    """Scan the file line by line for the first row with a wrong field count or a non-number."""
+    """Scan the file line by line for the first row with a wrong field count or a non-number.
+
+    Lines are read at most ``MAX_LINE_BYTES`` at a time: a file without line breaks is refused, not
+    read whole into memory.
+    """
     with path.open("r", encoding="utf-8-sig", errors="replace", newline="") as handle:
-        for row, fields in enumerate(csv.reader(islice(handle, 1, None), delimiter=delimiter)):
+        handle.readline(MAX_LINE_BYTES)  # the header, checked already
+        for row in count():
+            line = handle.readline(MAX_LINE_BYTES)
+            if not line:
+                break
             where = f"row {row} (counted from 0, header excluded)"
+            if len(line) >= MAX_LINE_BYTES and not line.endswith(("\n", "\r")):
+                return f"{where} is longer than {MAX_LINE_BYTES} characters; not a CSV recording"
+            if "\x00" in line:
+                return f"{where} holds NUL bytes: binary content"
+            fields = next(csv.reader([line], delimiter=delimiter), [])
             if len(fields) != len(header):
                 return f"{where} has {len(fields)} fields, the header {len(header)}"
             for column, field_text in zip(header, fields, strict=True):
@@ -394,7 +619,12 @@ def _locate_bad_field(path: Path, header: list[str], delimiter: str, error: Exce
     return str(error).splitlines()[0]
 
 
-def _read_csv_numpy(path: Path, header: list[str], delimiter: str) -> dict[str, np.ndarray]:
+def _read_csv_numpy(path: Path, header: list[str], delimiter: str, max_values: int) -> dict[str, np.ndarray]:
+    # Every value takes at least two bytes ("0,"): a file too short to exceed the limit needs no count.
+    if path.stat().st_size // 2 > max_values:
+        with path.open("rb") as handle:
+            lines = sum(block.count(b"\n") for block in iter(lambda: handle.read(1 << 20), b""))
+        _check_values(lines * len(header), max_values, path, "its rows hold")
     try:
         table = np.loadtxt(path, delimiter=delimiter, skiprows=1, dtype=np.float64, ndmin=2, comments=None)
     except ValueError as error:
@@ -449,6 +679,22 @@ def _looks_numeric(text: str) -> bool:
     return True
 
 
+def _read_table(path: Path, max_values: int) -> dict[str, np.ndarray]:
+    """The columns of a CSV or NPZ file, by its extension."""
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such file")
+    if path.is_dir():
+        raise ValueError(f"{path}: is a directory, not a recording file")
+    if path.stat().st_size == 0:
+        raise ValueError(f"{path}: empty file")
+    suffix = path.suffix.lower()
+    if suffix == ".npz":
+        return _read_npz(path, max_values)
+    if suffix in (".csv", ".txt"):
+        return _read_csv(path, max_values)
+    raise ValueError(f"{path}: unknown extension {path.suffix!r}; must be .csv or .npz")
+
+
 def load_recording(
     path: str | Path,
     *,
@@ -456,6 +702,8 @@ def load_recording(
     sample_rate: float | None = None,
     units: str = "rad/s",
     irregular: str = "refuse",
+    time_unit: str | None = None,
+    max_values: int = MAX_VALUES,
 ) -> Recording:
     """Read a CSV (with a header row) or NPZ recording; the file is opened read-only.
 
@@ -474,23 +722,16 @@ def load_recording(
         Units of the gyro columns in the file.
     irregular : {"refuse", "keep"}
         What to do with gaps or non-uniform timestamps.
+    time_unit : {"s", "ms", "us", "ns"}, optional
+        Unit of a numeric time column (default s); see :func:`recording_from_arrays`.
+    max_values : int
+        Most values (all columns together) read into memory; an NPZ is refused from its headers, a CSV
+        as soon as its rows exceed it (default ``MAX_VALUES``, 10⁹ values, 8 GB as float64).
     """
     if not isinstance(path, (str, Path)):
         raise TypeError(f"path={path!r}: must be a str or pathlib.Path")
+    table = _read_table(Path(path), check_positive_integer("max_values", max_values))
     path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"{path}: no such file")
-    if path.is_dir():
-        raise ValueError(f"{path}: is a directory, not a recording file")
-    if path.stat().st_size == 0:
-        raise ValueError(f"{path}: empty file")
-    suffix = path.suffix.lower()
-    if suffix == ".npz":
-        table = _read_npz(path)
-    elif suffix in (".csv", ".txt"):
-        table = _read_csv(path)
-    else:
-        raise ValueError(f"{path}: unknown extension {path.suffix!r}; must be .csv or .npz")
     time_name, temperature_name, angle_name, rate_names = _column_roles(table, columns, path)
     if sample_rate is None and "fs" in table and np.size(table["fs"]) == 1:
         sample_rate = float(np.asarray(table["fs"]).reshape(()))
@@ -505,4 +746,5 @@ def load_recording(
         units=units,
         source=str(path),
         irregular=irregular,
+        time_unit=time_unit,
     )

@@ -36,6 +36,7 @@ Units: the model is stored in per-sample discrete terms (TIM 2014 §II) with its
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 from typing import Any
@@ -362,8 +363,9 @@ def yule_walker(x: Any, sample_rate: float, maximum_order: int) -> tuple[float, 
     window = max(1001, round(10 * float(sample_rate)) | 1)
     fast = samples - uniform_filter1d(samples, window, mode="nearest")
     n = len(fast)
-    spectrum = np.fft.rfft(fast, 2 * n)
-    autocovariance = np.fft.irfft(spectrum * np.conj(spectrum), 2 * n)[: maximum_order + 1] / n
+    lags = range(min(maximum_order, n - 1) + 1)  # Σ_t x_t x_{t+k} / n, only the lags Levinson–Durbin needs
+    autocovariance = np.array([np.einsum("i,i->", fast[: n - k], fast[k:]) for k in lags]) / n
+    autocovariance = np.concatenate((autocovariance, np.zeros(maximum_order + 1 - len(autocovariance))))
     order = 0
     for p in range(1, maximum_order + 1):
         coefficients = solve_toeplitz(autocovariance[:p], autocovariance[1 : p + 1])
@@ -396,11 +398,23 @@ def _model_with(
 
 def _design(problem: _Problem, d: float) -> np.ndarray:
     """Columns: the exact Allan variance of each component at unit parameter (quantization: Q = 1 rad)."""
+    sizes = tuple(int(m) for m in problem.sizes)
     columns = []
     for name in problem.components:
-        column = term_allan_variance(name, problem.sizes, d, problem.ar)
-        columns.append(column * problem.sample_rate**2 if name == "quantization" else column)
+        if name == "flicker":
+            columns.append(term_allan_variance(name, problem.sizes, d))
+        else:
+            columns.append(_fixed_column(name, sizes, problem.ar, problem.sample_rate))
     return np.column_stack(columns)
+
+
+@functools.lru_cache(maxsize=64)
+def _fixed_column(name: str, sizes: tuple[int, ...], ar: tuple[float, ...], sample_rate: float) -> np.ndarray:
+    """A design column that does not depend on d, computed once per (τ set, AR coefficients)."""
+    column = term_allan_variance(name, np.asarray(sizes, dtype=np.int64), ar_coefficients=ar)
+    column = column * sample_rate**2 if name == "quantization" else column
+    column.setflags(write=False)
+    return column
 
 
 def _generalized_least_squares(

@@ -17,6 +17,8 @@ Besides the catalogue, :data:`OUTSIDE_CATALOGUE` holds signals that no catalogue
 
 from __future__ import annotations
 
+import inspect
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -25,17 +27,19 @@ from typing import Any
 import numpy as np
 
 from carousel_theory._validation import check_positive_integer, check_positive_real, check_real
-from carousel_theory.data import Recording, recording_from_arrays
+from carousel_theory.data import RESERVED_COLUMN_NAMES, Recording, recording_from_arrays
 from carousel_theory.effects import CATALOGUE, check_effect_parameters
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel
 from carousel_theory.processes import sample_flicker, sample_rate_random_walk, sample_white
 
 __all__ = [
+    "MAX_SIMULATED_SAMPLES",
     "OUTSIDE_CATALOGUE",
     "Injection",
     "default_temperature_profile",
     "parse_injection",
     "sample_noise",
+    "samples_for_duration",
     "simulate_recording",
     "write_recording",
 ]
@@ -143,19 +147,71 @@ def default_temperature_profile(time: np.ndarray) -> np.ndarray:
     return 25.0 + 0.5 * relative + 0.8 * np.sin(2.0 * np.pi * relative / 0.6 + 0.3)
 
 
-def _check_size_rate_generator(samples: Any, sample_rate: Any, rng: Any) -> tuple[int, float]:
+def _check_size_rate_generator(
+    samples: Any, sample_rate: Any, rng: Any, max_samples: int
+) -> tuple[int, float]:
     samples = check_positive_integer("samples", samples, minimum=2)
+    _check_sample_budget(samples, 1, max_samples)
     sample_rate = float(check_positive_real("sample_rate", sample_rate))
     if not isinstance(rng, np.random.Generator):
         raise TypeError(f"rng={rng!r}: must be a numpy.random.Generator (np.random.default_rng(seed))")
     return samples, sample_rate
 
 
-def _axis_biases(axes: Sequence[str], bias: float | Mapping[str, float]) -> dict[str, float]:
+#: Most samples per axis :func:`simulate_recording` makes unless ``max_samples`` raises the limit:
+#: 10⁸ samples (11.6 days at 100 Hz) of 2 axes, time and temperature are 3.2 GB as float64.
+MAX_SIMULATED_SAMPLES = 10**8
+#: Names an axis may not take: the readers' reserved columns, and the keywords of ``numpy.savez``,
+#: which would swallow the column (``allow_pickle``) or collide with the file argument.
+_FORBIDDEN_AXIS_NAMES = RESERVED_COLUMN_NAMES | frozenset(inspect.signature(np.savez).parameters)
+
+
+def samples_for_duration(
+    duration: Any, sample_rate: Any, *, columns: int = 4, max_samples: int = MAX_SIMULATED_SAMPLES
+) -> int:
+    """The number of samples of ``duration`` s at ``sample_rate`` Hz, refused above ``max_samples``.
+
+    ``columns`` (the axes plus time and temperature) only enters the memory estimate in the message.
+    """
+    duration = float(check_positive_real("duration", duration))
+    sample_rate = float(check_positive_real("sample_rate", sample_rate))
+    product = duration * sample_rate
+    if not math.isfinite(product):
+        raise ValueError(f"duration={duration!r} at sample_rate={sample_rate!r}: the sample count overflows")
+    samples = round(product)
+    _check_sample_budget(samples, columns, max_samples)
+    return samples
+
+
+def _check_sample_budget(samples: int, columns: int, max_samples: int) -> None:
+    max_samples = check_positive_integer("max_samples", max_samples)
+    if samples > max_samples:
+        raise ValueError(
+            f"samples={samples}: more than max_samples={max_samples} (about "
+            f"{samples * columns * 8 / 1e9:.3g} GB for {columns} float64 column{'s' * (columns > 1)}); "
+            "raise max_samples (--max-samples) if the machine has the memory"
+        )
+
+
+def _check_axis_names(axes: Any) -> None:
+    """Refuse axis names a written file could not hold as gyro columns."""
     if isinstance(axes, str) or not axes or not all(isinstance(a, str) and a for a in axes):
         raise TypeError(f"axes={axes!r}: must be a non-empty sequence of axis names")
-    if len(set(axes)) != len(axes):
-        raise ValueError(f"axes={axes!r}: names must be distinct")
+    for axis in axes:
+        if not axis.isidentifier():
+            raise ValueError(f"axes={axes!r}: {axis!r} must be an identifier (letters, digits, underscores)")
+        if axis.lower() in _FORBIDDEN_AXIS_NAMES:
+            raise ValueError(
+                f"axes={axes!r}: {axis!r} is reserved (for time, temperature, angle, sample rate or a "
+                f"numpy.savez keyword: {', '.join(sorted(_FORBIDDEN_AXIS_NAMES))}); choose another "
+                "name, e.g. wx"
+            )
+    if len({axis.lower() for axis in axes}) != len(axes):
+        raise ValueError(f"axes={axes!r}: names must be distinct (ignoring case)")
+
+
+def _axis_biases(axes: Sequence[str], bias: float | Mapping[str, float]) -> dict[str, float]:
+    _check_axis_names(axes)
     if isinstance(bias, Mapping):
         missing = [a for a in axes if a not in bias]
         if missing:
@@ -228,13 +284,14 @@ def simulate_recording(
     effects: Sequence[Injection | str] = (),
     temperature: Any = "auto",
     samples_per_revolution: int | None = None,
+    max_samples: int = MAX_SIMULATED_SAMPLES,
 ) -> Recording:
     """A recording of ``samples`` samples at ``sample_rate`` Hz from a declared model plus effects.
 
     Parameters
     ----------
-    samples, sample_rate
-        Length and rate (Hz) of the recording.
+    samples, sample_rate, max_samples
+        Length and rate (Hz) of the recording; more than ``max_samples`` samples are refused.
     rng
         The only source of randomness.
     bias
@@ -253,9 +310,8 @@ def simulate_recording(
     samples_per_revolution
         When given, a ``phi`` column of a uniform rotation with this many samples per revolution,
         φ_i = 2π i / N (TIM 2014 eq. (6)); the rates stay those of a static sensor.
-
     """
-    samples, sample_rate = _check_size_rate_generator(samples, sample_rate, rng)
+    samples, sample_rate = _check_size_rate_generator(samples, sample_rate, rng, max_samples)
     biases = _axis_biases(axes, bias)
     injections = [parse_injection(e) if isinstance(e, str) else e for e in effects]
     resolved = [(i.name, _resolved_parameters(i)) for i in injections]

@@ -26,8 +26,11 @@ Exact closed form (white, rate random walk, quantization; overlapping estimator)
 
 Exact finite sums (1/f, AR, and the non-overlapping estimator)
     c_ij(δ) is computed on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is
-    correlated with the triangle g_j once per τ_j (one FFT), and g_i = B_{m_i}⋆B_{m_i} is applied to
-    that as two moving sums. T: for AR, the lag beyond which the geometric envelope is below
+    correlated with the triangle g_j once per τ_j, and g_i = B_{m_i}⋆B_{m_i} is applied to that, each
+    as two moving sums (cumulative sums). The τ are summed in increasing order, column by column; along
+    an octave step B_{2m} = B_m (1 + x^m) gives c_{2m,j}(δ) = c_{m,j}(δ) + 2 c_{m,j}(δ − m) + c_{m,j}(δ − 2m),
+    three additions per lag. N_ij is linear between its breaks, so Σ N c² is two sums per piece.
+    T: for AR, the lag beyond which the geometric envelope is below
     :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j).
     The 1/f tail beyond the window is bounded, not dropped silently: for k ≥ 1, γ_z(k) < 0 and
     |γ_z(k)| decreases, with |γ_z(k)| ≤ |γ_z(V)| ((V + 2 − d)/(k + 2 − d))^{3−2d} (from the ratio
@@ -49,7 +52,6 @@ from typing import Any
 
 import numpy as np
 import sympy as sp
-from scipy.signal import fftconvolve
 
 from carousel_theory import symbols
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
@@ -205,10 +207,6 @@ def _finite_sum(model: NoiseModel, m_i: int, m_j: int, K_i: int, K_j: int) -> fl
 # --- the finite lag sums (1/f, AR, non-overlapping) ---------------------------------------------------
 
 
-def _triangle(m: int) -> np.ndarray:
-    return np.minimum(np.arange(1, 2 * m), np.arange(2 * m - 1, 0, -1)).astype(np.float64)
-
-
 def _lag_window(model: NoiseModel, m_i: int, m_j: int) -> int:
     """How far beyond the filters' support c_ij is summed (module text)."""
     terms = model.terms()
@@ -216,10 +214,15 @@ def _lag_window(model: NoiseModel, m_i: int, m_j: int) -> int:
     if "flicker" in terms:
         reach = FLICKER_REACH * (m_i + m_j) + 64
     if "ar" in terms:
-        rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -np.asarray(model.ar_coefficients)))))))
-        if rho > 0:
-            reach = max(reach, int(math.log(AR_TRUNCATION) / math.log(rho)) + len(model.ar_coefficients) + 2)
+        reach = max(reach, _ar_reach(tuple(model.ar_coefficients)))
     return reach
+
+
+@functools.lru_cache(maxsize=64)
+def _ar_reach(coefficients: tuple[float, ...]) -> int:
+    """Lags beyond which the AR envelope ρ^k is below AR_TRUNCATION (ρ the largest root modulus)."""
+    rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -np.asarray(coefficients)))))))
+    return int(math.log(AR_TRUNCATION) / math.log(rho)) + len(coefficients) + 2 if rho > 0 else 0
 
 
 def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, count: int) -> float:
@@ -235,15 +238,17 @@ def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, cou
 
 
 class _LongMemory:
-    """c_ij(δ) = Σ_k g_i[k] A_j(δ − k) with A_j = γ_z correlated with g_j once per j (one FFT), and g_i,
-    the triangle B_{m_i}⋆B_{m_i}, applied as two moving sums (cumulative sums): no FFT per pair."""
+    """c_ij(δ) = Σ_k g_i[k] A_j(δ − k) with A_j = γ_z correlated with g_j once per j, and g_i,
+    the triangle B_{m_i}⋆B_{m_i}, applied as two moving sums (cumulative sums), for A_j as for each pair."""
 
     def __init__(self, model: NoiseModel, sizes: np.ndarray, length: int) -> None:
         self.model = model
         self.length = int(length)
         largest = int(np.max(sizes))
         self.reach = {int(m): _lag_window(model, int(m), int(m)) for m in sizes}
-        span = 8 * largest + max(self.reach.values()) + 8
+        # Lags used: |δ| ≤ length + 2·largest in _prepare, and V = reach + 3 in the 1/f tail bound.
+        widest = max(self.reach.values())
+        span = min(8 * largest + widest + 8, max(self.length + 2 * largest + 2, widest + 4))
         self.gamma = model.increment_autocovariance(span)
         flicker = "flicker" in model.terms()
         self.flicker_gamma = increment_autocovariance("flicker", span if flicker else 1, model.flicker_d)
@@ -259,19 +264,29 @@ class _LongMemory:
         # No offset δ between two differences exceeds the record; A_j is needed down to δ − 2m_i + 2.
         self.low = max(-4 * m_j - reach, -self.length - 2 * m_j)
         high = min(2 * m_j + reach, self.length)
-        lags = np.abs(np.arange(self.low, high + 2 * m_j - 1))
-        self.correlated = fftconvolve(self.gamma[lags], _triangle(m_j), mode="valid")
+        end = high + 2 * m_j - 1  # γ_z at |x| for x = low … end − 1, as two slices (γ_z is even)
+        negative = self.gamma[-self.low : 0 : -1] if self.low < 0 else self.gamma[:0]
+        window = np.concatenate((negative, self.gamma[max(self.low, 0) : end]))
+        self.correlated = _twice_moving_sum(window, m_j)  # γ_z ⋆ g_j, g_j = B_{m_j} ⋆ B_{m_j}
         self.j = m_j
 
     def cross_covariance(self, m_i: int, m_j: int, first: int, last: int) -> np.ndarray:
         """c_ij(δ) for δ = first … last (inside the window prepared for m_j)."""
         self._prepare(m_j)
         start = first - 2 * m_i + 2 - self.low  # A_j from δ − (2m_i − 2)
-        values = self.correlated[start : last - self.low + 1]
-        for _ in range(2):  # two moving sums of length m_i
-            cumulative = np.concatenate(([0.0], np.cumsum(values)))
-            values = cumulative[m_i:] - cumulative[:-m_i]
+        return _twice_moving_sum(self.correlated[start : last - self.low + 1], m_i)
+
+
+def _twice_moving_sum(values: np.ndarray, m: int) -> np.ndarray:
+    """The triangle g_m = B_m ⋆ B_m applied as two moving sums of length m (cumulative sums); g_1 = (1)."""
+    if m == 1:
         return values
+    for _ in range(2):
+        cumulative = np.empty(len(values) + 1)
+        cumulative[0] = 0.0
+        np.cumsum(values, out=cumulative[1:])
+        values = cumulative[m:] - cumulative[:-m]
+    return values
 
 
 def _lag_sum(
@@ -296,7 +311,62 @@ def _lag_sum(
     dense = memory.cross_covariance(m_i, m_j, int(deltas[0]), int(deltas[-1]))
     c = dense if estimator == "overlapping" else dense[deltas - deltas[0]]
     bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
-    return float(np.dot(counts, c * c)), bound
+    return float(np.einsum("i,i,i->", counts, c, c)), bound
+
+
+def _pair_window(memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[int, int, int]:
+    """(first δ, last δ, reach) of the overlapping lag sum of one pair (as in :func:`_lag_sum`)."""
+    reach = _lag_window(memory.model, m_i, m_j)
+    return max(-(K_i - 1), -2 * m_j - reach), min(K_j - 1, 2 * m_i + reach), reach
+
+
+def _counted_square_sum(c: np.ndarray, first: int, K_i: int, K_j: int, ramp: np.ndarray) -> float:
+    """Σ_δ N_ij(δ) c(δ)² for δ = first, first + 1, …: N_ij is linear between its breaks 0 and K_j − K_i,
+    so each piece is N(s) Σ c² + slope Σ (δ − s) c² (no per-δ count array). einsum rather than np.dot:
+    a threaded BLAS dot stalls on a loaded machine and gains nothing on one vector."""
+    last = first + len(c)
+    breaks = sorted({first, last, *(b for b in (0, K_j - K_i) if first < b < last)})
+    total = 0.0
+    for start, stop in itertools.pairwise(breaks):
+        piece = c[start - first : stop - first]
+        count = _pair_count(start, K_i, K_j)
+        slope = _pair_count(start + 1, K_i, K_j) - count if stop - start > 1 else 0
+        total += count * float(np.einsum("i,i->", piece, piece))
+        if slope:
+            total += slope * float(np.einsum("i,i,i->", ramp[: stop - start], piece, piece))
+    return total
+
+
+def _column_lag_sums(memory: _LongMemory, sizes: list[int], terms: list[int]) -> list[tuple[float, float]]:
+    """(Σ N c², tail bound) of the overlapping lag sums of the pairs (i, j = last), sizes increasing.
+
+    Along octave steps the triangle doubles, B_{2m}² = B_m² (1 + x^m)², so
+    c_{2m,j}(δ) = c_{m,j}(δ) + 2 c_{m,j}(δ − m) + c_{m,j}(δ − 2m): three additions per lag instead of two
+    moving sums per pair. Other steps start afresh from A_j.
+    """
+    m_j, K_j = sizes[-1], terms[-1]
+    windows = [_pair_window(memory, m, m_j, K, K_j) for m, K in zip(sizes, terms, strict=True)]
+    top = max(high for _, high, _ in windows)
+    starts = [min(low for low, _, _ in windows)] * len(sizes)
+    for i in range(len(sizes) - 2, -1, -1):  # how far below each c_i must reach for the later doublings
+        starts[i] = starts[i + 1] - 2 * sizes[i] if sizes[i + 1] == 2 * sizes[i] else starts[-1]
+    ramp = np.arange(top - starts[0] + 1, dtype=np.float64)
+    results: list[tuple[float, float]] = []
+    values, first = np.zeros(0), 0
+    for i, (m_i, K_i) in enumerate(zip(sizes, terms, strict=True)):
+        if i > 0 and m_i == 2 * sizes[i - 1]:
+            m, length = sizes[i - 1], len(values)
+            doubled = np.multiply(values[m : length - m], 2.0)
+            doubled += values[2 * m :]
+            doubled += values[: length - 2 * m]
+            values, first = doubled, first + 2 * m
+        else:
+            values, first = memory.cross_covariance(m_i, m_j, starts[i], top), starts[i]
+        low, high, reach = windows[i]
+        total = _counted_square_sum(values[low - first : high - first + 1], low, K_i, K_j, ramp)
+        bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
+        results.append((total, bound))
+    return results
 
 
 # --- public ---------------------------------------------------------------------------------------
@@ -304,6 +374,36 @@ def _lag_sum(
 
 def _terms_count(sizes: np.ndarray, length: int, estimator: str) -> np.ndarray:
     return length - 2 * sizes + 1 if estimator == "overlapping" else length // sizes - 1
+
+
+def _covariance_matrix(
+    model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
+) -> tuple[np.ndarray, np.ndarray]:
+    """(Σ N c² / scale, tail bound / scale) for every pair of non-decreasing ``sizes``."""
+    terms = _terms_count(sizes, length, estimator)
+    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
+    memory = _LongMemory(model, sizes, length) if long_terms or estimator != "overlapping" else None
+    count = len(sizes)
+    covariance, bound = np.empty((count, count)), np.zeros((count, count))
+    by_column = memory is not None and estimator == "overlapping" and bool(np.all(np.diff(sizes) > 0))
+    for j in range(count):  # column by column: A_j is prepared once per j
+        column = (
+            _column_lag_sums(memory, sizes[: j + 1].tolist(), terms[: j + 1].tolist())
+            if by_column and memory is not None
+            else None
+        )
+        for i in range(j + 1):
+            m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
+            if column is not None:
+                total, tail = column[i]
+            elif memory is None:
+                total, tail = _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
+            else:
+                total, tail = _lag_sum(memory, m_i, m_j, K_i, K_j, estimator)
+            scale = 2.0 * float(m_i) ** 2 * float(m_j) ** 2 * K_i * K_j
+            covariance[i, j] = covariance[j, i] = total / scale
+            bound[i, j] = bound[j, i] = tail / scale
+    return covariance, bound
 
 
 def allan_estimate_covariance(
@@ -325,21 +425,10 @@ def allan_estimate_covariance(
             f"tau_samples={sizes!r}: for the non-overlapping estimator each cluster size must divide the "
             "larger ones (use octave τ)"
         )
-    terms = _terms_count(sizes, int(length), estimator)
-    long_terms = any(name in model.terms() for name in ("flicker", "ar"))
-    memory = _LongMemory(model, sizes, int(length)) if long_terms or estimator != "overlapping" else None
-    count = len(sizes)
-    covariance, bound = np.empty((count, count)), np.zeros((count, count))
-    for j in range(count):  # column by column: A_j is prepared once per j
-        for i in range(j + 1):
-            m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
-            if memory is None:
-                total, tail = _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
-            else:
-                total, tail = _lag_sum(memory, m_i, m_j, K_i, K_j, estimator)
-            scale = 2.0 * float(m_i) ** 2 * float(m_j) ** 2 * K_i * K_j
-            covariance[i, j] = covariance[j, i] = total / scale
-            bound[i, j] = bound[j, i] = tail / scale
+    order = np.argsort(sizes, kind="stable")  # summed in increasing τ (the window of A_j covers m_i ≤ m_j)
+    ascending, inverse = sizes[order], np.argsort(order)
+    covariance, bound = _covariance_matrix(model, ascending, int(length), estimator)
+    covariance, bound = covariance[np.ix_(inverse, inverse)], bound[np.ix_(inverse, inverse)]
     allan = model.allan_variance(sizes)
     edf = 2.0 * allan**2 / np.diag(covariance)
     return TauCovariance(sizes, covariance, allan, edf, bound, estimator)

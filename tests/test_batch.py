@@ -3,6 +3,7 @@ file, a worker killed in the middle, a task time-out, a resumed run, and the com
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import signal
@@ -20,7 +21,7 @@ from carousel_theory.batch.fleet import FleetJob, run_fleet
 from carousel_theory.batch.report import effect_frequencies, find_outliers, robust_z_scores, write_report
 from carousel_theory.batch.rows import BatchRow, error_row
 from carousel_theory.batch.store import read_table, write_atomically, write_table
-from carousel_theory.batch.tasks import TaskOptions, check_options
+from carousel_theory.batch.tasks import TASKS, TaskOptions, check_options
 from carousel_theory.cli import main
 from carousel_theory.data import load_recording
 from carousel_theory.fitting import fit_noise_model
@@ -29,8 +30,9 @@ from carousel_theory.simulate import simulate_recording, write_recording
 SMALL_SAMPLES = 4000
 #: A record whose fit lasts about a second: long enough to kill its worker in the middle of the task.
 MEDIUM_SAMPLES = 60_000
-#: A record whose fit lasts well over the time-out of the test (it is cancelled, never finished).
-SLOW_SAMPLES = 240_000
+#: A record whose closed loop lasts well over the time-out of the test (it is cancelled, never finished):
+#: 10,000 s at 100 Hz, where the loop takes seconds even on a quiet machine.
+SLOW_SAMPLES = 1_000_000
 
 
 def _write(path, samples, seed, axes=("wx", "wy")):
@@ -66,7 +68,7 @@ def medium_file(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def slow_file(tmp_path_factory):
-    return _write(tmp_path_factory.mktemp("slow") / "slow.npz", SLOW_SAMPLES, 9, axes=("wx",))
+    return _write(tmp_path_factory.mktemp("slow") / "slow.npz", SLOW_SAMPLES, 9)
 
 
 def _same(first: BatchRow, second: BatchRow) -> bool:
@@ -199,7 +201,8 @@ def test_a_worker_killed_mid_task_is_retried_and_the_fleet_completes(client, fle
 
 
 def test_a_task_over_the_time_out_becomes_an_error_row(client, slow_file, tmp_path):
-    outcome = run_fleet(client, _job([slow_file], tmp_path, task_timeout=2.0), show_progress=False)
+    job = _job([slow_file], tmp_path, task="loop", task_timeout=2.0)
+    outcome = run_fleet(client, job, show_progress=False)
     (row,) = outcome.rows
     assert (row.status, row.error_kind, row.axis) == ("error", "timeout", "")
     assert "--task-timeout=2 s" in row.error and row.content_hash == content_hash(slow_file)
@@ -278,7 +281,10 @@ def test_a_table_round_trips_through_parquet(tmp_path):
 
 
 INVALID_CALLS = [
-    ("unknown task", lambda: _job([], "out", task="design"), "task='design'"),
+    ("unknown task", lambda: _job([], "out", task="spectrum"), "task='spectrum'"),
+    ("design without latitude", lambda: check_options("design", TaskOptions()), "latitude=None"),
+    ("design at the pole", lambda: check_options("design", TaskOptions(latitude=90.0)), "latitude=90.0"),
+    ("design scheme", lambda: check_options("design", TaskOptions(latitude=60.0, schemes=("spin",))), "spin"),
     ("loop split per axis", lambda: _job([], "out", task="loop", per_axis=True), "per_axis=True"),
     ("non-positive time-out", lambda: _job([], "out", task_timeout=0.0), "task_timeout=0.0"),
     ("no inputs", lambda: discover_recordings([]), "inputs=[]"),
@@ -300,3 +306,24 @@ def test_invalid_calls(call, message):
 def test_missing_input_names_the_pattern(tmp_path):
     with pytest.raises(FileNotFoundError, match="nothing_here"):
         discover_recordings([str(tmp_path / "nothing_here" / "*.csv")])
+
+
+def test_design_task_agrees_with_the_fit_and_design_commands(fleet, tmp_path, capsys):
+    """The fleet's design row against the two single-file commands chained by hand: ``fit --json`` into
+    ``design --noise``."""
+    path = str(fleet / "unit_a.csv")
+    options = TaskOptions(latitude=61.5, design_durations=(20.0,), schemes=("static", "carousel:N=200"))
+    check_options("design", options)
+    rows = TASKS["design"](path, options, None)
+    assert [row.axis for row in rows] == ["wx", "wy"]
+    assert main(["fit", path, "--json"]) == 0
+    noise = tmp_path / "fit.json"
+    noise.write_text(capsys.readouterr().out, encoding="utf-8")
+    command = ["design", "--noise", str(noise), "--latitude", "61.5", "--duration", "20"]
+    command += ["--scheme", "static", "--scheme", "carousel:N=200", "--json"]
+    assert main(command) == 0
+    design = json.loads(capsys.readouterr().out)
+    best = next(s for s in design["schemes"] if s["scheme"] == design["recommended"])
+    for row in rows:
+        assert row.design_scheme == design["recommended"]
+        assert row.design_heading_sigma_deg == pytest.approx(best["heading_sigma_deg"], rel=1e-9)

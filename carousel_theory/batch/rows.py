@@ -52,6 +52,10 @@ class BatchRow:
     misfit_metric: str = ""
     misfit_before: float = NAN
     misfit_after: float = NAN
+    design_scheme: str = ""
+    design_duration_s: float = NAN
+    design_heading_sigma_deg: float = NAN
+    design_heading_rms_deg: float = NAN
     seconds: float = NAN
     attempts: int = 0
     worker: str = ""

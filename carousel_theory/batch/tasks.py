@@ -7,8 +7,9 @@ same calls the single-file commands ``allan``, ``fit`` and ``loop`` make, with t
 of those APIs touches this module only. The analyses are imported with this module, so a worker imports
 them once, when it first receives a task, outside the time a task is timed against ``--task-timeout``.
 
-``design`` is not a task yet: no ``design`` command exists. To add it, write ``design_task`` with the
-signature above and add it to :data:`TASKS`; the command line offers every key of :data:`TASKS`.
+``design`` fits each axis as ``fit`` does and then asks :mod:`carousel_theory.design` which rotation scheme
+gives the smallest heading error with that gyro's noise (the fitted models of the first two axes are the
+two horizontal gyros), at the latitude and durations given.
 """
 
 from __future__ import annotations
@@ -24,8 +25,11 @@ import numpy as np
 from carousel_theory.allan import ESTIMATORS, allan_variance
 from carousel_theory.batch.rows import BatchRow
 from carousel_theory.closed_loop import run_loop
-from carousel_theory.data import load_recording
+from carousel_theory.data import MAX_VALUES, load_recording
+from carousel_theory.design import DesignSettings, default_schemes, evaluate_scheme, recommended
 from carousel_theory.fitting import COMPONENTS, NoiseModel, fit_noise_model
+from carousel_theory.heading import check_latitude
+from carousel_theory.rotation_schemes import parse_scheme
 from carousel_theory.units import bias_instability_from_allan_minimum, rad_per_s_to_deg_per_h
 
 __all__ = ["PER_AXIS_TASKS", "TASKS", "TaskOptions", "check_options", "recording_axes"]
@@ -37,8 +41,9 @@ class TaskOptions:
 
     ``columns``, ``units`` and ``sample_rate`` are the recording options (``--column``, ``--units``,
     ``--sample-rate``); ``estimator`` serves ``allan`` and ``fit``; ``model``, ``flicker_d``, ``tau_min``,
-    ``tau_max`` and ``iterations`` serve ``fit``; ``samples_per_revolution``, ``alpha`` and ``loop_axes``
-    serve ``loop``.
+    ``tau_max`` and ``iterations`` serve ``fit`` (and ``design``); ``samples_per_revolution``, ``alpha``
+    and ``loop_axes`` serve ``loop``; ``latitude``, ``design_durations`` and ``schemes`` (empty: the
+    built-in sweep) serve ``design``.
     """
 
     columns: tuple[tuple[str, str], ...] = ()
@@ -53,6 +58,11 @@ class TaskOptions:
     samples_per_revolution: int = 200
     alpha: float = 0.01
     loop_axes: tuple[str, ...] | None = None
+    latitude: float | None = None
+    design_durations: tuple[float, ...] = (3600.0,)
+    schemes: tuple[str, ...] = ()
+    time_unit: str | None = None
+    max_values: int = MAX_VALUES
 
     def fingerprint(self) -> str:
         """A stable text of the options: rows computed with other options are not reused."""
@@ -66,6 +76,8 @@ def _load(path: str, options: TaskOptions, irregular: str = "refuse") -> Any:
         sample_rate=options.sample_rate,
         units=options.units,
         irregular=irregular,
+        time_unit=options.time_unit,
+        max_values=options.max_values,
     )
 
 
@@ -132,27 +144,77 @@ def _fit_fields(fit: Any) -> dict[str, Any]:
     return values
 
 
-def fit_task(path: str, options: TaskOptions, axis: str | None = None) -> list[BatchRow]:
-    """``carousel-theory fit``: GLS on the octave Allan variance, one row per axis in field units."""
+def _fitted_axes(path: str, options: TaskOptions, axis: str | None) -> tuple[Any, list[tuple[str, Any]]]:
     recording = _load(path, options)
     tau_range = None
     if options.tau_min is not None or options.tau_max is not None:
         tau_range = (options.tau_min or 1.0 / recording.sample_rate, options.tau_max or recording.duration)
-    rows = []
-    for name, rates in _selected(recording, axis).items():
-        fit = fit_noise_model(
-            rates,
-            recording.sample_rate,
-            options.model,
-            flicker_d=options.flicker_d,
-            tau_range=tau_range,
-            estimator=options.estimator,
-            iterations=options.iterations,
+    fits = [
+        (
+            name,
+            fit_noise_model(
+                rates,
+                recording.sample_rate,
+                options.model,
+                flicker_d=options.flicker_d,
+                tau_range=tau_range,
+                estimator=options.estimator,
+                iterations=options.iterations,
+            ),
         )
-        rows.append(
-            BatchRow(path=path, task="fit", axis=name, **_recording_fields(recording), **_fit_fields(fit))
+        for name, rates in _selected(recording, axis).items()
+    ]
+    return recording, fits
+
+
+def fit_task(path: str, options: TaskOptions, axis: str | None = None) -> list[BatchRow]:
+    """``carousel-theory fit``: GLS on the octave Allan variance, one row per axis in field units."""
+    recording, fits = _fitted_axes(path, options, axis)
+    return [
+        BatchRow(path=path, task="fit", axis=name, **_recording_fields(recording), **_fit_fields(fit))
+        for name, fit in fits
+    ]
+
+
+def _design_fields(models: list[NoiseModel], sample_rate: float, options: TaskOptions) -> dict[str, Any]:
+    """The recommended scheme and its heading error at the longest duration (``carousel-theory design``)."""
+    schemes = (
+        [parse_scheme(text, sample_rate) for text in options.schemes]
+        if options.schemes
+        else default_schemes(sample_rate)
+    )
+    settings = DesignSettings(noise=models, sample_rate=sample_rate, latitude=float(options.latitude or 0.0))
+    results = [
+        result for scheme in schemes for result in evaluate_scheme(scheme, options.design_durations, settings)
+    ]
+    best_label = recommended(results)
+    longest = max(options.design_durations)
+    best = next(r for r in results if r.scheme == best_label and r.duration == longest)
+    return {
+        "design_scheme": best.scheme,
+        "design_duration_s": float(best.duration),
+        "design_heading_sigma_deg": float(best.heading_sigma_deg),
+        "design_heading_rms_deg": math.nan if best.heading_rms_deg is None else float(best.heading_rms_deg),
+    }
+
+
+def design_task(path: str, options: TaskOptions, axis: str | None = None) -> list[BatchRow]:
+    """``carousel-theory design`` on a fitted recording: each axis's fit (as ``fit``) and, on every row,
+    the scheme with the smallest heading error for the first two axes as the horizontal gyros."""
+    if axis is not None:
+        raise ValueError(f"axis={axis!r}: design needs the two horizontal gyros together, not one axis")
+    recording, fits = _fitted_axes(path, options, None)
+    if len(fits) < 2:
+        raise ValueError(
+            f"{path}: design needs two gyro axes (the horizontal pair); found {[n for n, _ in fits]}"
         )
-    return rows
+    shared = _design_fields([fits[0][1].model, fits[1][1].model], recording.sample_rate, options)
+    return [
+        BatchRow(
+            path=path, task="design", axis=name, **_recording_fields(recording), **_fit_fields(fit), **shared
+        )
+        for name, fit in fits
+    ]
 
 
 def _relative_root_error(variance: float, error: float) -> float:
@@ -215,11 +277,12 @@ def loop_task(path: str, options: TaskOptions, axis: str | None = None) -> list[
     ]
 
 
-#: Task name → adapter. ``design`` joins when a ``design`` command exists (see the module text).
+#: Task name → adapter.
 TASKS: dict[str, Callable[[str, TaskOptions, str | None], list[BatchRow]]] = {
     "allan": allan_task,
     "fit": fit_task,
     "loop": loop_task,
+    "design": design_task,
 }
 #: Tasks that may run as one task per axis (``--per-axis``) on long records.
 PER_AXIS_TASKS = frozenset({"allan", "fit"})
@@ -228,9 +291,7 @@ PER_AXIS_TASKS = frozenset({"allan", "fit"})
 def check_options(task: str, options: TaskOptions) -> None:
     """Refuse options the analyses would refuse on every file, once, before the fleet starts."""
     if task not in TASKS:
-        raise ValueError(
-            f"task={task!r}: must be one of {sorted(TASKS)} (design joins when a design command exists)"
-        )
+        raise ValueError(f"task={task!r}: must be one of {sorted(TASKS)}")
     if options.estimator not in ESTIMATORS:
         raise ValueError(f"estimator={options.estimator!r}: must be one of {ESTIMATORS}")
     unknown = [name for name in options.model if name not in COMPONENTS]
@@ -240,5 +301,19 @@ def check_options(task: str, options: TaskOptions) -> None:
         raise ValueError(f"iterations={options.iterations!r}: must be >= 1")
     if not 0 < options.alpha < 0.5:
         raise ValueError(f"alpha={options.alpha!r}: must be in (0, 0.5)")
+    if task == "design":
+        _check_design_options(options)
     if options.samples_per_revolution < 3:
         raise ValueError(f"samples_per_revolution={options.samples_per_revolution!r}: must be >= 3")
+
+
+def _check_design_options(options: TaskOptions) -> None:
+    if options.latitude is None:
+        raise ValueError("latitude=None: the design task needs --latitude DEG")
+    check_latitude(options.latitude)
+    if not options.design_durations or any(
+        not (d > 0 and math.isfinite(d)) for d in options.design_durations
+    ):
+        raise ValueError(f"design_durations={options.design_durations!r}: must be positive, finite seconds")
+    for text in options.schemes:
+        parse_scheme(text, options.sample_rate or 100.0)

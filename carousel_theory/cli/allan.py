@@ -37,7 +37,14 @@ def read_recording(path: Path, args: argparse.Namespace) -> Recording:
     """Load DATA with the shared options; irregular timing is refused (the Allan variance needs a uniform
     sample rate)."""
     columns = dict(args.column) if args.column else None
-    return load_recording(path, columns=columns, sample_rate=args.sample_rate, units=args.units)
+    return load_recording(
+        path,
+        columns=columns,
+        sample_rate=args.sample_rate,
+        units=args.units,
+        time_unit=args.time_unit,
+        max_values=args.max_values,
+    )
 
 
 def _taus(text: str) -> Any:

@@ -46,6 +46,13 @@ def _add_task_options(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--alpha", type=float, default=0.01, help="loop: false-alarm rate of each test")
     parser.add_argument("--axes", type=_names, metavar="A[,B]", help="loop: the gyro axes to analyse")
+    parser.add_argument("--latitude", type=float, metavar="DEG", help="design: site latitude, degrees")
+    parser.add_argument(
+        "--duration", type=float, action="append", metavar="S", help="design: record length, s (repeatable)"
+    )
+    parser.add_argument(
+        "--scheme", action="append", default=[], metavar="TEXT", help="design: a scheme (default: a sweep)"
+    )
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -63,7 +70,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "inputs", nargs="+", metavar="INPUT", help="files, directories or quoted globs ('lab/**/*.csv')"
     )
-    parser.add_argument("--task", default="fit", help="allan, fit or loop (default fit)")
+    parser.add_argument("--task", default="fit", help="allan, fit, loop or design (default fit)")
     parser.add_argument(
         "--out", type=Path, required=True, metavar="DIR", help="directory of the table and report"
     )
@@ -92,6 +99,8 @@ def _options(args: argparse.Namespace) -> TaskOptions:
         columns=tuple((_COLUMN_ALIASES.get(ours, ours), theirs) for ours, theirs in args.column),
         units=args.units,
         sample_rate=args.sample_rate,
+        time_unit=args.time_unit,
+        max_values=args.max_values,
         estimator=args.estimator,
         model=args.model,
         flicker_d=args.flicker_d,
@@ -101,6 +110,9 @@ def _options(args: argparse.Namespace) -> TaskOptions:
         samples_per_revolution=args.samples_per_revolution,
         alpha=args.alpha,
         loop_axes=args.axes,
+        latitude=args.latitude,
+        design_durations=tuple(args.duration or (3600.0,)),
+        schemes=tuple(args.scheme),
     )
     check_options(args.task, options)
     return options

@@ -70,7 +70,13 @@ def run(args: argparse.Namespace) -> int:
     if args.json is not None and args.json.is_dir():
         raise ValueError(f"--json {args.json}: is a directory; give a file name")
     recording = load_recording(
-        args.data, columns=columns, sample_rate=args.sample_rate, units=args.units, irregular="keep"
+        args.data,
+        columns=columns,
+        sample_rate=args.sample_rate,
+        units=args.units,
+        irregular="keep",
+        time_unit=args.time_unit,
+        max_values=args.max_values,
     )
     result = run_loop(
         recording, samples_per_revolution=args.samples_per_revolution, axes=axes, alpha=args.alpha

@@ -14,6 +14,8 @@ import numpy as np
 
 from carousel_theory._validation import check_fractional_order, check_positive_integer, check_positive_real
 from carousel_theory.cli._files import write_or_compare
+from carousel_theory.cli._recording_options import add_reader_options
+from carousel_theory.data import MAX_VALUES
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -28,6 +30,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("data", nargs="?", type=Path, help="a recording (CSV or NPZ) to predict")
     parser.add_argument("--axis", default=None, help="gyro column (default: the first in the file)")
+    add_reader_options(parser)
     parser.add_argument(
         "--start", type=int, default=0, help="index of the first calibration sample (default 0)"
     )
@@ -78,6 +81,8 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(
                 f"DATA={str(args.data)!r}: not used with --table1 (use --data DIR for measured data)"
             )
+        if args.time_unit is not None or args.max_values != MAX_VALUES:
+            raise ValueError("--time-unit, --max-values: apply to DATA, not to --table1")
         return _run_table1(args)
     if args.data is None:
         raise ValueError("DATA: a recording is required (or use --table1)")
@@ -110,7 +115,7 @@ def _run_recording(args: argparse.Namespace) -> int:
     from carousel_theory.data import load_recording
 
     calibration_length, horizon = _check_recording_options(args)
-    recording = load_recording(args.data)
+    recording = load_recording(args.data, time_unit=args.time_unit, max_values=args.max_values)
     axis = args.axis or next(iter(recording.rates))
     if axis not in recording.rates:
         raise ValueError(f"--axis={axis!r}: not in the recording (have {sorted(recording.rates)})")

@@ -8,7 +8,14 @@ from pathlib import Path
 import numpy as np
 
 from carousel_theory.effects import CATALOGUE
-from carousel_theory.simulate import OUTSIDE_CATALOGUE, parse_injection, simulate_recording, write_recording
+from carousel_theory.simulate import (
+    MAX_SIMULATED_SAMPLES,
+    OUTSIDE_CATALOGUE,
+    parse_injection,
+    samples_for_duration,
+    simulate_recording,
+    write_recording,
+)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -38,14 +45,22 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--effect", action="append", default=[], metavar="NAME[:k=v,...]", help="repeatable")
     parser.add_argument("--no-temperature", action="store_true", help="no temperature column")
     parser.add_argument("--samples-per-revolution", type=int, help="add a phi column of a uniform rotation")
+    parser.add_argument(
+        "--max-samples",
+        type=int,
+        default=MAX_SIMULATED_SAMPLES,
+        help=f"refuse a recording of more samples per axis (default {MAX_SIMULATED_SAMPLES:.0e})",
+    )
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    if args.duration <= 0 or args.sample_rate <= 0:
-        raise ValueError(f"--duration={args.duration!r}, --sample-rate={args.sample_rate!r}: must be > 0")
-    samples = round(args.duration * args.sample_rate)
     axes = tuple(a.strip() for a in args.axes.split(",") if a.strip())
+    if not axes:
+        raise ValueError(f"--axes={args.axes!r}: must name at least one axis, e.g. wx,wy")
+    samples = samples_for_duration(
+        args.duration, args.sample_rate, columns=len(axes) + 2, max_samples=args.max_samples
+    )
     effects = [parse_injection(text) for text in args.effect]
     recording = simulate_recording(
         samples,
@@ -59,6 +74,7 @@ def run(args: argparse.Namespace) -> int:
         effects=effects,
         temperature=None if args.no_temperature else "auto",
         samples_per_revolution=args.samples_per_revolution,
+        max_samples=args.max_samples,
     )
     write_recording(recording, args.out)
     described = ", ".join(args.effect) or "none"
