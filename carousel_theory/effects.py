@@ -25,7 +25,7 @@ need: names, descriptions, injections and their parameters.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any, ClassVar
 
 import numpy as np
@@ -283,6 +283,19 @@ CATALOGUE: dict[str, Effect] = {
 }
 
 
+#: Ranges of the effect parameters that have one: (effect, parameter) → (test, the rule in words).
+PARAMETER_RULES: dict[tuple[str, str], tuple[Callable[[float], bool], str]] = {
+    ("warmup", "time_constant"): (lambda v: v > 0, "must be > 0 s"),
+    ("steps", "time"): (lambda v: 0 <= v <= 1, "must be a fraction of the record in [0, 1]"),
+    ("sinusoid", "frequency"): (lambda v: v > 0, "must be > 0 Hz"),
+    ("spikes", "rate"): (lambda v: 0 < v <= 1, "must be a probability per sample in (0, 1]"),
+    ("colored_noise", "coefficient"): (lambda v: -1 < v < 1, "must lie in (-1, 1) (a stationary AR(1))"),
+    ("flicker", "variance"): (lambda v: v >= 0, "must be >= 0"),
+    ("flicker", "d"): (lambda v: 0 < v < 1, "must lie in (0, 1)"),
+    ("quantization", "step"): (lambda v: v > 0, "must be > 0"),
+}
+
+
 def check_effect_parameters(name: str, parameters: Mapping[str, Any]) -> dict[str, float]:
     """The effect's defaults overridden by ``parameters``, each a finite real; unknown keys refused."""
     if name not in CATALOGUE or name == "none":
@@ -296,4 +309,7 @@ def check_effect_parameters(name: str, parameters: Mapping[str, Any]) -> dict[st
     merged = dict(defaults)
     for key, value in parameters.items():
         merged[key] = float(check_real(f"{name}.{key}", value))
+        test, rule = PARAMETER_RULES.get((name, key), (lambda v: True, ""))
+        if not test(merged[key]):
+            raise ValueError(f"{name}:{key}={merged[key]!r}: {rule}")
     return merged

@@ -55,6 +55,7 @@ from carousel_theory._validation import (
 )
 from carousel_theory.allan import AllanResult, allan_variance, with_model_intervals
 from carousel_theory.noise_model import NoiseModel, term_allan_variance
+from carousel_theory.progress import progress
 from carousel_theory.tau_covariance import allan_estimate_covariance
 
 __all__ = [
@@ -68,6 +69,7 @@ __all__ = [
     "consistency_test",
     "fit_noise_model",
     "fit_observed",
+    "fit_recording",
     "nested_test",
     "observe_allan",
     "yule_walker",
@@ -732,3 +734,39 @@ def consistency_test(values: Any) -> ConsistencyTest | None:
     return ConsistencyTest(
         mean, float(np.std(estimates, ddof=1)), chi_square, degrees, float(stats.chi2.sf(chi_square, degrees))
     )
+
+
+def fit_recording(
+    recording: Any,
+    model: Any = ("white", "rrw"),
+    *,
+    axes: Any = None,
+    tau_min: float | None = None,
+    tau_max: float | None = None,
+    label: str = "fit: axes",
+    **options: Any,
+) -> dict[str, FitResult]:
+    """:func:`fit_noise_model` on each gyro axis of a recording (all of them, or ``axes``), in order.
+
+    ``tau_min`` / ``tau_max`` (s) bound the fitted τ; either alone leaves the other end at one sample or
+    the whole record. ``options`` are the remaining keywords of :func:`fit_noise_model`.
+    """
+    for name, value in (("tau_min", tau_min), ("tau_max", tau_max)):
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{name}={value!r}: must be a positive number of seconds")
+    tau_range = None
+    if tau_min is not None or tau_max is not None:
+        tau_range = (
+            1.0 / recording.sample_rate if tau_min is None else tau_min,
+            recording.duration if tau_max is None else tau_max,
+        )
+    names = list(recording.rates) if axes is None else list(axes)
+    unknown = [name for name in names if name not in recording.rates]
+    if unknown:
+        raise ValueError(f"axes={unknown!r}: not in the recording's axes {sorted(recording.rates)}")
+    return {
+        name: fit_noise_model(
+            recording.rates[name], recording.sample_rate, model, tau_range=tau_range, **options
+        )
+        for name in progress(names, len(names), label)
+    }

@@ -310,3 +310,27 @@ def test_nested_test_refuses_a_term_not_fitted():
         nested_test(observed, FitOptions(), "flicker")
     with pytest.raises(ValueError, match="keep_record=True"):
         fit_observed(observed, FitOptions(components=("white", "ar")))
+
+
+def test_fit_recording_fits_each_axis_as_fit_noise_model_does():
+    from carousel_theory.fitting import fit_recording
+    from carousel_theory.simulate import simulate_recording
+
+    recording = simulate_recording(
+        20_000,
+        100.0,
+        rng=np.random.default_rng(21),
+        white_variance=3.6e-5,
+        rrw_variance=1e-11,
+        axes=("wx", "wy"),
+    )
+    fits = fit_recording(recording, ("white", "rrw"), tau_max=20.0, iterations=2)
+    assert list(fits) == ["wx", "wy"]
+    direct = fit_noise_model(
+        recording.rates["wy"], 100.0, ("white", "rrw"), tau_range=(0.01, 20.0), iterations=2
+    )
+    assert fits["wy"].model == direct.model
+    with pytest.raises(ValueError, match=r"tau_min=0\.0: must be a positive"):
+        fit_recording(recording, tau_min=0.0)
+    with pytest.raises(ValueError, match=r"axes=\['wz'\]"):
+        fit_recording(recording, axes=["wz"])

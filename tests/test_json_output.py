@@ -49,9 +49,9 @@ def test_dataclasses_become_objects() -> None:
         a: float
         b: float
 
-    assert to_strict({"p": Pair(1.0, math.nan)}) == {
-        "p": {"a": 1.0, "b": None, "b_null_reason": to_strict({"b": math.nan})["b_null_reason"]}
-    }
+    got = to_strict({"p": Pair(1.0, math.nan)})
+    assert got["p"]["a"] == 1.0 and got["p"]["b"] is None
+    assert got["p"]["b_null_reason"].startswith("not a number")
 
 
 def test_document_header() -> None:

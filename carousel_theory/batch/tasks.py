@@ -27,7 +27,7 @@ from carousel_theory.batch.rows import BatchRow
 from carousel_theory.closed_loop import run_loop
 from carousel_theory.data import MAX_VALUES, load_recording
 from carousel_theory.design import DesignSettings, default_schemes, evaluate_scheme, recommended
-from carousel_theory.fitting import COMPONENTS, NoiseModel, fit_noise_model
+from carousel_theory.fitting import COMPONENTS, NoiseModel, fit_recording
 from carousel_theory.heading import check_latitude
 from carousel_theory.rotation_schemes import parse_scheme
 from carousel_theory.units import bias_instability_from_allan_minimum, rad_per_s_to_deg_per_h
@@ -146,25 +146,17 @@ def _fit_fields(fit: Any) -> dict[str, Any]:
 
 def _fitted_axes(path: str, options: TaskOptions, axis: str | None) -> tuple[Any, list[tuple[str, Any]]]:
     recording = _load(path, options)
-    tau_range = None
-    if options.tau_min is not None or options.tau_max is not None:
-        tau_range = (options.tau_min or 1.0 / recording.sample_rate, options.tau_max or recording.duration)
-    fits = [
-        (
-            name,
-            fit_noise_model(
-                rates,
-                recording.sample_rate,
-                options.model,
-                flicker_d=options.flicker_d,
-                tau_range=tau_range,
-                estimator=options.estimator,
-                iterations=options.iterations,
-            ),
-        )
-        for name, rates in _selected(recording, axis).items()
-    ]
-    return recording, fits
+    fits = fit_recording(
+        recording,
+        options.model,
+        axes=None if axis is None else [axis],
+        tau_min=options.tau_min,
+        tau_max=options.tau_max,
+        flicker_d=options.flicker_d,
+        estimator=options.estimator,
+        iterations=options.iterations,
+    )
+    return recording, list(fits.items())
 
 
 def fit_task(path: str, options: TaskOptions, axis: str | None = None) -> list[BatchRow]:

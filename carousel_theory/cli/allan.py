@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from pathlib import Path
@@ -14,6 +13,8 @@ import numpy as np
 from carousel_theory.allan import ESTIMATORS, NOISE_TYPES, AllanResult, allan_variance
 from carousel_theory.cli._recording_options import add_recording_options
 from carousel_theory.data import Recording, load_recording
+from carousel_theory.json_output import json_document, strict_json
+from carousel_theory.output_files import atomic_output, plan_outputs
 from carousel_theory.progress import progress
 
 
@@ -132,14 +133,15 @@ def plot_allan(
     axes.set_title(title, fontsize=10)
     axes.grid(True, which="both", alpha=0.3)
     axes.legend(fontsize=8)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=120)
+    with atomic_output(path) as temporary:
+        figure.savefig(temporary, dpi=120, format=Path(path).suffix.lstrip(".") or "png")
     plt.close(figure)
 
 
 def run(args: argparse.Namespace) -> int:
     if not (0 < args.confidence < 1):
         raise ValueError(f"--confidence={args.confidence!r}: must be in (0, 1)")
+    plan_outputs([(args.plot, "file")], inputs=[args.data])
     recording = read_recording(args.data, args)
     results = {}
     for name, rates in progress(recording.rates.items(), len(recording.rates), "allan: axes"):
@@ -163,8 +165,7 @@ def run(args: argparse.Namespace) -> int:
             "confidence": args.confidence,
             "columns": {name: result_as_json(result) for name, result in results.items()},
         }
-        json.dump(document, sys.stdout, indent=1)
-        print()
+        sys.stdout.write(strict_json(json_document("allan", document)))
         return 0
     print(
         f"{recording.source}: {len(recording)} samples at {recording.sample_rate:g} Hz, "

@@ -43,6 +43,8 @@ def _regressions(previous_json: Path, checked: list) -> list[str]:
 
 def run(args: argparse.Namespace) -> int:
     claims = all_claims()
+    if args.only is not None and not args.only.strip():
+        raise ValueError(f"--only={args.only!r}: must be a non-empty claim-id prefix, e.g. TIM2014-eq18")
     if args.only:
         claims = [claim for claim in claims if claim.id.startswith(args.only)]
         if not claims:
@@ -51,6 +53,7 @@ def run(args: argparse.Namespace) -> int:
     print(summary(checked))
     failed = any(item.verdict.status.value == "failed" for item in checked)
     if args.only:  # a partial run never writes the full registry
+        print(f"--only {args.only}: a partial run writes no file (paper_check.md and .json need every claim)")
         return 1 if failed else 0
     regressions = _regressions(args.out / JSON_NAME, checked) if args.check else []
     same_md = write_or_compare(args.out / MARKDOWN_NAME, render_markdown(checked), args.check)

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
+import sys
 from dataclasses import asdict
 from pathlib import Path
 from typing import Any
@@ -23,6 +23,7 @@ from carousel_theory.design import (
 from carousel_theory.fitting import NoiseModel
 from carousel_theory.heading import heading_monte_carlo
 from carousel_theory.imperfections import Imperfections
+from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.progress import progress
 from carousel_theory.rotation_schemes import parse_scheme
 
@@ -241,7 +242,8 @@ def run(args: argparse.Namespace) -> int:
             records.append(record)
     best = recommended(results)
     if args.json:
-        print(json.dumps({"schemes": records, "recommended": best, "latitude": settings.latitude}, indent=1))
+        body = {"schemes": records, "recommended": best, "latitude": settings.latitude}
+        sys.stdout.write(strict_json(json_document("design", body)))
     else:
         _print_table(results, best)
     if args.plot is not None:

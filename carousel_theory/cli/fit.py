@@ -4,7 +4,6 @@ TIM 2014 Table III's units; optionally a plot and a markdown report over several
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from pathlib import Path
@@ -13,8 +12,9 @@ from typing import Any
 import numpy as np
 
 from carousel_theory.cli.allan import add_recording_arguments, plot_allan, read_recording, result_as_json
-from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_noise_model
-from carousel_theory.progress import progress
+from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_recording
+from carousel_theory.json_output import json_document, strict_json
+from carousel_theory.output_files import plan_outputs, write_text_atomic
 from carousel_theory.units import BIAS_INSTABILITY_FACTOR, bias_instability_from_allan_minimum
 
 #: Rows of the Table III-style summary: (key, label, unit, source of the value).
@@ -78,20 +78,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitResult]]:
     recording = read_recording(path, args)
-    tau_range = None
-    if args.tau_min is not None or args.tau_max is not None:
-        tau_range = (args.tau_min or 1.0 / recording.sample_rate, args.tau_max or recording.duration)
-    fits = {}
-    for name, rates in progress(recording.rates.items(), len(recording.rates), f"fit {path.name}: axes"):
-        fits[name] = fit_noise_model(
-            rates,
-            recording.sample_rate,
-            args.model,
-            flicker_d=args.flicker_d,
-            tau_range=tau_range,
-            estimator=args.estimator,
-            iterations=args.iterations,
-        )
+    fits = fit_recording(
+        recording,
+        args.model,
+        tau_min=args.tau_min,
+        tau_max=args.tau_max,
+        label=f"fit {path.name}: axes",
+        flicker_d=args.flicker_d,
+        estimator=args.estimator,
+        iterations=args.iterations,
+    )
     return recording, fits
 
 
@@ -105,6 +101,21 @@ def _measured_bias_instability(fit: FitResult) -> tuple[float, float, float, flo
         bias_instability_from_allan_minimum(math.sqrt(allan.ci_low[best])),
         bias_instability_from_allan_minimum(math.sqrt(allan.ci_high[best])),
     )
+
+
+#: Why a standard error is null in ``fit --json``: a term held at zero has none (see ``at_bound``).
+FIT_NULL_REASONS = {
+    **dict.fromkeys(
+        ("white_variance", "rrw_variance", "flicker_variance", "flicker_d", "quantization", "ar_variance"),
+        "no standard error: the term is held at zero, the bound of its range (listed in at_bound)",
+    ),
+    "standard_error": "no standard error: the parameter comes from a term held at zero (see at_bound)",
+}
+
+
+def _with_errors(parameters: dict[str, tuple[float, float]]) -> dict[str, dict[str, float]]:
+    """``{name: {"value", "standard_error"}}``: an object per parameter, so a null error has its reason."""
+    return {key: {"value": value, "standard_error": error} for key, (value, error) in parameters.items()}
 
 
 def fit_as_json(fit: FitResult) -> dict[str, Any]:
@@ -122,8 +133,8 @@ def fit_as_json(fit: FitResult) -> dict[str, Any]:
             "ar_coefficients": list(model.ar_coefficients),
         },
         "standard_errors": dict(fit.standard_errors),
-        "field_units": {key: list(value) for key, value in fit.field_units().items()},
-        "paper_units": {key: list(value) for key, value in fit.paper_units().items()},
+        "field_units": _with_errors(fit.field_units()),
+        "paper_units": _with_errors(fit.paper_units()),
         "chi_square": fit.chi_square,
         "degrees_of_freedom": fit.degrees_of_freedom,
         "p_value": fit.p_value,
@@ -271,39 +282,69 @@ def _consistency_section(files: list[tuple[Any, dict[str, FitResult]]], axes: li
     ]:
         cells = []
         for axis in axes:
-            values = []
-            for _, fits in files:
-                table = fits[axis].paper_units() if kind == "paper" else fits[axis].field_units()
-                if key in table:
-                    values.append(table[key])
-            cells.append(_consistency(values) if len(values) == len(files) else "—")
+            present = [fits[axis] for _, fits in files if axis in fits]  # runs may hold different axes
+            tables = [fit.paper_units() if kind == "paper" else fit.field_units() for fit in present]
+            values = [table[key] for table in tables if key in table]
+            cells.append(_consistency(values) if len(values) == len(present) >= 2 else "—")
         if any(cell != "—" for cell in cells):
             lines.append(_row(label, unit, cells))
-    return [*lines, ""]
+    return [*lines, "", *_missing_axes_note(files, axes)]
+
+
+def _missing_axes_note(files: list[tuple[Any, dict[str, FitResult]]], axes: list[str]) -> list[str]:
+    """Which recordings lack an axis (its consistency uses the runs that have it)."""
+    missing = {
+        axis: [Path(recording.source).name for recording, fits in files if axis not in fits] for axis in axes
+    }
+    notes = [f"{axis}: not in {', '.join(names)}" for axis, names in missing.items() if names]
+    return (
+        [f"Axes missing from some runs (their consistency uses the other runs): {'; '.join(notes)}.", ""]
+        if notes
+        else []
+    )
 
 
 def markdown_report(files: list[tuple[Any, dict[str, FitResult]]], args: argparse.Namespace) -> str:
     """The Table III-style report: one table per recording and a run-to-run consistency table."""
     lines = _report_header(files, args)
-    axes = list(files[0][1])
+    axes = list(
+        dict.fromkeys(name for _, fits in files for name in fits)
+    )  # every axis of every run, in order
     for recording, fits in files:
         lines += [
             f"## {Path(recording.source).name}",
             "",
             f"{len(recording)} samples at {recording.sample_rate:g} Hz ({recording.duration / 3600:.3g} h).",
             "",
-            "| parameter | unit | " + " | ".join(axes) + " |",
-            "|---|---|" + "---|" * len(axes),
+            "| parameter | unit | " + " | ".join(fits) + " |",
+            "|---|---|" + "---|" * len(fits),
         ]
-        lines += _parameter_rows(fits, axes, args) + _data_rows(fits, axes) + _verdict_lines(fits, axes)
+        own = list(fits)
+        lines += _parameter_rows(fits, own, args) + _data_rows(fits, own) + _verdict_lines(fits, own)
     if len(files) > 1:
         lines += _consistency_section(files, axes)
     return "\n".join(lines)
 
 
+def _check_fit_options(args: argparse.Namespace) -> None:
+    """Options that would be ignored or misread are refused instead (issue: silently ignored options)."""
+    for name in ("tau_min", "tau_max"):
+        value = getattr(args, name)
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise ValueError(f"--{name.replace('_', '-')}={value!r}: must be a positive number of seconds")
+    if args.tau_min is not None and args.tau_max is not None and args.tau_min >= args.tau_max:
+        raise ValueError(f"--tau-min={args.tau_min!r}: must be below --tau-max={args.tau_max!r}")
+    if args.flicker_d is not None and "flicker" not in args.model:
+        raise ValueError(
+            f"--flicker-d={args.flicker_d!r}: only with 'flicker' in --model (got {args.model!r})"
+        )
+
+
 def run(args: argparse.Namespace) -> int:
     if args.iterations < 1:
         raise ValueError(f"--iterations={args.iterations!r}: must be >= 1")
+    _check_fit_options(args)
+    plan_outputs([(args.plot, "file"), (args.markdown, "file")], inputs=args.data)
     files = [_fit_file(path, args) for path in args.data]
     if args.plot:
         recording, fits = files[0]
@@ -315,8 +356,7 @@ def run(args: argparse.Namespace) -> int:
             models,
         )
     if args.markdown:
-        args.markdown.parent.mkdir(parents=True, exist_ok=True)
-        args.markdown.write_text(markdown_report(files, args), encoding="utf-8")
+        write_text_atomic(args.markdown, markdown_report(files, args))
     if args.json:
         document = {
             "files": [
@@ -327,8 +367,7 @@ def run(args: argparse.Namespace) -> int:
                 for recording, fits in files
             ]
         }
-        json.dump(document, sys.stdout, indent=1)
-        print()
+        sys.stdout.write(strict_json(json_document("fit", document, FIT_NULL_REASONS)))
         return 0
     for recording, fits in files:
         print(f"{recording.source}: {len(recording)} samples at {recording.sample_rate:g} Hz")

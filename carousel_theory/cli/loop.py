@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import argparse
-import json
 from pathlib import Path
 
 from carousel_theory.cli._recording_options import add_recording_options
 from carousel_theory.closed_loop import DEFAULT_ALPHA, run_loop, write_report
+from carousel_theory.closed_loop.report import REPORT_FILES
 from carousel_theory.data import load_recording
+from carousel_theory.json_output import json_document, strict_json
+from carousel_theory.output_files import plan_outputs, write_text_atomic
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -67,8 +69,13 @@ def run(args: argparse.Namespace) -> int:
             for ours, theirs in args.column
         }
     axes = None if args.axes is None else tuple(a.strip() for a in args.axes.split(",") if a.strip())
-    if args.json is not None and args.json.is_dir():
-        raise ValueError(f"--json {args.json}: is a directory; give a file name")
+    if axes is not None and len(set(axes)) != len(axes):
+        raise ValueError(f"--axes={args.axes!r}: names an axis twice; give each gyro axis once")
+    report_files = [] if args.report is None else [args.report / name for name in REPORT_FILES]
+    plan_outputs(
+        [(args.json, "file"), (args.report, "directory"), *((path, "file") for path in report_files)],
+        inputs=[args.data],
+    )
     recording = load_recording(
         args.data,
         columns=columns,
@@ -86,8 +93,7 @@ def run(args: argparse.Namespace) -> int:
     for note in result.observations:
         print(f"note: {note}")
     if args.json is not None:
-        args.json.parent.mkdir(parents=True, exist_ok=True)
-        args.json.write_text(json.dumps(result.as_dict(), indent=1, sort_keys=False) + "\n", encoding="utf-8")
+        write_text_atomic(args.json, strict_json(json_document("loop", result.as_dict())))
         print(f"wrote {args.json}")
     if args.report is not None:
         written = write_report(result, args.report)

@@ -16,6 +16,7 @@ from carousel_theory._validation import check_fractional_order, check_positive_i
 from carousel_theory.cli._files import write_or_compare
 from carousel_theory.cli._recording_options import add_reader_options
 from carousel_theory.data import MAX_VALUES
+from carousel_theory.output_files import atomic_output, plan_outputs, write_text_atomic
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -115,6 +116,7 @@ def _run_recording(args: argparse.Namespace) -> int:
     from carousel_theory.data import load_recording
 
     calibration_length, horizon = _check_recording_options(args)
+    plan_outputs([(args.output, "file")], inputs=[args.data])
     recording = load_recording(args.data, time_unit=args.time_unit, max_values=args.max_values)
     axis = args.axis or next(iter(recording.rates))
     if axis not in recording.rates:
@@ -217,10 +219,10 @@ def _write_forecast(path: Path, rows: dict, model, axis: str, source: str) -> No
             },
             "columns": {key: _column_values(values) for key, values in rows.items()},
         }
-        path.write_text(json.dumps(payload, indent=1) + "\n", encoding="utf-8")
+        write_text_atomic(path, json.dumps(payload, indent=1) + "\n")
     elif suffix == ".csv":
         length = len(next(iter(rows.values())))
-        with path.open("w", encoding="utf-8", newline="") as handle:
+        with atomic_output(path) as temporary, temporary.open("w", encoding="utf-8", newline="") as handle:
             handle.write(",".join(rows) + "\n")
             for start in range(0, length, _CSV_CHUNK):  # in chunks: the text of 10⁶ rows never all in memory
                 columns = [

@@ -12,6 +12,7 @@ from scipy import stats
 from carousel_theory.closed_loop.detection import json_value
 from carousel_theory.closed_loop.evaluation import BAND_EXPECTED_EXCEEDANCE, BAND_SIGMA, BinSeries, Evaluation
 from carousel_theory.closed_loop.result import LoopResult, Step
+from carousel_theory.output_files import atomic_output, write_text_atomic
 
 __all__ = ["render_summary", "write_report"]
 
@@ -178,6 +179,10 @@ def _plot_bins(plot: Any, before: BinSeries, after: BinSeries, colour: str, labe
     plot.legend(fontsize=7, loc="upper right")
 
 
+#: The files :func:`write_report` writes into its folder.
+REPORT_FILES = ("allan_deviation.png", "bins.png", "summary.md")
+
+
 def write_report(result: LoopResult, directory: Any) -> list[str]:
     """Write ``summary.md`` and the plots (matplotlib, Agg backend, imported here) into ``directory``.
 
@@ -200,7 +205,8 @@ def write_report(result: LoopResult, directory: Any) -> list[str]:
     for plot, axis in zip(grid[0], result.axes, strict=True):
         _plot_allan(plot, axis, before, after)
     figure.tight_layout()
-    figure.savefig(directory / "allan_deviation.png", dpi=110)
+    with atomic_output(directory / "allan_deviation.png") as temporary:
+        figure.savefig(temporary, dpi=110, format="png")
     plt.close(figure)
     carousel = (
         before.carouselled is not None and after.carouselled is not None and len(after.carouselled.values)
@@ -214,8 +220,9 @@ def write_report(result: LoopResult, directory: Any) -> list[str]:
         _plot_bins(grid[-1][0], before.carouselled, after.carouselled, "r", "carouselled (rad/s)")
     grid[-1][0].set_xlabel("time (s)")
     figure.tight_layout()
-    figure.savefig(directory / "bins.png", dpi=110)
+    with atomic_output(directory / "bins.png") as temporary:
+        figure.savefig(temporary, dpi=110, format="png")
     plt.close(figure)
     written = ["allan_deviation.png", "bins.png"]
-    (directory / "summary.md").write_text(render_summary(result, written), encoding="utf-8")
+    write_text_atomic(directory / "summary.md", render_summary(result, written))
     return [*written, "summary.md"]

@@ -30,24 +30,7 @@ from carousel_theory.flicker_asymptotics import (
 from carousel_theory.propagation import flicker_bin_variances
 from carousel_theory.symbols import N, d, k
 
-__all__ = [
-    "AVERAGED_GROWTH_ABOVE_HALF",
-    "AVERAGED_GROWTH_AT_HALF",
-    "AVERAGED_INCREMENT",
-    "AVERAGED_LOG_LOWER_BOUND",
-    "AVERAGED_LOG_UPPER_BOUND",
-    "AVERAGED_TAIL_BELOW_HALF",
-    "CAROUSELLED_TAIL",
-    "CAROUSELLED_TAIL_BOUND_HALF",
-    "DOCUMENT",
-    "STATIONARY_AUTOCOVARIANCE",
-    "STATIONARY_AUTOCOVARIANCE_TAIL",
-    "cumulative_coefficient",
-    "fractional_coefficient",
-    "limit_19_log_series",
-    "log_growth_envelopes",
-    "stationary_autocovariance_derivation",
-]
+__all__ = ["DOCUMENT"]
 
 
 _j = sp.Symbol("j", integer=True, positive=True)
