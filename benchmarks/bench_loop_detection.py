@@ -45,7 +45,7 @@ HOUR = 360_000
 LADDERS: dict[str, tuple[str, list[float], str]] = {
     "warmup": ("amplitude", [1.2e-2, 8e-3, 5e-3, 3e-3], "time_constant=30"),
     "temperature": ("coefficient", [5e-3, 3e-3, 1.5e-3, 8e-4], ""),
-    "steps": ("size", [3e-3, 2e-3, 1.5e-3, 1e-3], ""),
+    "steps": ("size", [4e-3, 3e-3, 2e-3, 1.5e-3], ""),
     "spikes": ("amplitude", [0.06, 0.045, 0.035, 0.03], "rate=2e-4"),
     "sinusoid": ("amplitude", [5e-4, 3e-4, 2e-4, 1.5e-4], "frequency=3.3"),
     "colored_noise": ("coefficient", [0.4, 0.1, 0.05, 0.03], ""),
@@ -65,11 +65,17 @@ class PairCase:
 
 PAIRS = (
     PairCase(
-        "warm-up under 1/f noise",
+        "warm-up (8e-3) under 1/f noise",
+        ("warmup:amplitude=8e-3,time_constant=120", "flicker:variance=5e-8"),
+        ("warmup", "flicker"),
+    ),
+    PairCase("warm-up (8e-3) alone", ("warmup:amplitude=8e-3,time_constant=120",), ("warmup",)),
+    PairCase(
+        "warm-up (4e-3) under 1/f noise",
         ("warmup:amplitude=4e-3,time_constant=120", "flicker:variance=5e-8"),
         ("warmup", "flicker"),
     ),
-    PairCase("warm-up alone", ("warmup:amplitude=4e-3,time_constant=120",), ("warmup",)),
+    PairCase("warm-up (4e-3) alone", ("warmup:amplitude=4e-3,time_constant=120",), ("warmup",)),
     PairCase("1/f noise alone", ("flicker:variance=5e-8",), ("flicker",)),
     PairCase(
         "temperature under a strong random walk (σ_q² = 1e-10)",

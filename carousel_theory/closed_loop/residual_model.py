@@ -15,8 +15,7 @@ covariance across τ, AR coefficients by :func:`carousel_theory.fitting.yule_wal
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -29,22 +28,25 @@ from carousel_theory.processes import sample_flicker
 from carousel_theory.propagation import repeated_weights_bin_variances, weighted_sum_variance
 
 __all__ = [
+    "VARIANCE_NAMES",
     "FittedNoise",
     "ModelTerms",
     "ResidualFit",
+    "StatisticVariance",
     "allan_z_values",
     "bounded_noise",
     "chi_square_z",
     "describe_noise",
     "difference_covariance_bands",
     "fit_residual_model",
+    "model_curve_error",
     "noise_growth",
     "ranking_statistic_variance",
     "revolution_bin_variance",
     "simulate_block_sums",
     "spectral_density",
     "statistic_variance",
-    "statistic_variance_dof",
+    "statistic_variance_error",
     "uniform_bin_variances",
 ]
 
@@ -64,14 +66,36 @@ class ModelTerms:
     flicker: bool = False
 
 
+#: The variances the loop's tests use, as :class:`FittedNoise` names them.
+VARIANCE_NAMES = ("long_run_white_variance", "rrw_variance", "flicker_variance")
+#: Which fitter parameter each of them is (the AR innovation variance is scaled to its long-run value).
+_FITTER_PARAMETER = {
+    "white_variance": "long_run_white_variance",
+    "ar_variance": "long_run_white_variance",
+    "rrw_variance": "rrw_variance",
+    "flicker_variance": "flicker_variance",
+}
+
+
 @dataclass(frozen=True)
 class FittedNoise:
-    """A fitted :class:`~carousel_theory.noise_model.NoiseModel` and the standard errors the loop's tests
-    use: ``long_run_white_variance`` (the short noise as long averages see it), ``rrw_variance`` and, when
-    fitted, ``flicker_variance``."""
+    """A fitted :class:`~carousel_theory.noise_model.NoiseModel` and the covariance of its variance
+    estimates that the loop's tests use: the fitter's GLS covariance (JᵀC⁻¹J)⁻¹
+    (:func:`carousel_theory.fitting.fit_observed`, C the model-based covariance of the Allan-variance
+    estimates across τ) of ``names`` (a subset of VARIANCE_NAMES, in that order); the short noise as
+    long averages see it (``long_run_white_variance``), the walk and, when fitted, the 1/f variance.
+    Without ``names`` (a model given rather than fitted) every variance counts as uncertain by its own
+    size."""
 
     model: NoiseModel
-    standard_errors: Mapping[str, float]
+    names: tuple[str, ...] = ()
+    covariance: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+
+    @property
+    def standard_errors(self) -> dict[str, float]:
+        """The square roots of the diagonal of ``covariance``, by name."""
+        diagonal = np.diag(self.covariance)
+        return {name: math.sqrt(max(float(diagonal[i]), 0.0)) for i, name in enumerate(self.names)}
 
 
 def _long_run_variance(model: NoiseModel) -> float:
@@ -119,27 +143,18 @@ def _ar_coefficients(
     return reused or yule_walker(x, sample_rate, terms.ar_order)
 
 
-def _loop_standard_errors(result: FitResult, terms: ModelTerms) -> dict[str, float]:
-    """Standard errors of the long-run white, walk and 1/f variances for the loop's Satterthwaite degrees
-    of freedom: from the normal equations with diagonal weights Var(σ̂_A²) = 2 σ_A⁴/ν at the used τ (ν
-    the fitted model's equivalent degrees of freedom), as the loop's tests were calibrated with. They are
-    smaller than the fitter's GLS standard errors, which include the correlation across τ."""
+def _fitted_noise(result: FitResult) -> FittedNoise:
+    """The fit as a :class:`FittedNoise`: the rows of the fitter's GLS covariance that are variances the
+    loop uses, the AR innovation variance scaled by 1/(1 − Σ a_j)² to the long-run variance (the AR
+    coefficients themselves are held fixed, as the fit holds them)."""
     model = result.model
-    used = result.used
-    sizes = np.asarray(result.allan.samples_per_cluster, dtype=np.int64)[used]
-    short = "ar" if model.ar_variance or model.ar_coefficients else "white"
-    names = (short, "rrw", *(("flicker",) if terms.flicker else ()))
-    columns = [term_allan_variance(name, sizes, model.flicker_d, model.ar_coefficients) for name in names]
-    if short == "ar":  # the column of the long-run variance σ_e²/(1 − Σ a_j)²
-        columns[0] = columns[0] * (1.0 - sum(model.ar_coefficients)) ** 2
-    sigma = np.maximum(result.model_avar[used], 1e-300) * np.sqrt(2.0 / result.edf[used])
-    weighted = np.column_stack(columns) / sigma[:, None]
-    try:
-        covariance = np.linalg.inv(weighted.T @ weighted)
-    except np.linalg.LinAlgError:
-        covariance = np.full((len(names), len(names)), math.nan)
-    labels = ("long_run_white_variance", "rrw_variance", "flicker_variance")
-    return {labels[i]: float(math.sqrt(max(covariance[i, i], 0.0))) for i in range(len(names))}
+    gain = 1.0 / (1.0 - sum(model.ar_coefficients)) ** 2 if model.ar_coefficients else 1.0
+    rows = [i for i, name in enumerate(result.parameters) if name in _FITTER_PARAMETER]
+    names = tuple(_FITTER_PARAMETER[result.parameters[i]] for i in rows)
+    scale = np.array([gain if result.parameters[i] == "ar_variance" else 1.0 for i in rows])
+    covariance = np.asarray(result.covariance)[np.ix_(rows, rows)] * np.outer(scale, scale)
+    order = sorted(range(len(names)), key=lambda i: VARIANCE_NAMES.index(names[i]))
+    return FittedNoise(model, tuple(names[i] for i in order), covariance[np.ix_(order, order)])
 
 
 def fit_residual_model(
@@ -164,7 +179,7 @@ def fit_residual_model(
     used = result.used
     allan = result.allan
     return ResidualFit(
-        noise=FittedNoise(result.model, _loop_standard_errors(result, terms)),
+        noise=_fitted_noise(result),
         tau=np.asarray(allan.tau)[used],
         sizes=np.asarray(allan.samples_per_cluster, dtype=np.int64)[used],
         observed=np.asarray(allan.avar)[used],
@@ -225,25 +240,40 @@ def ranking_statistic_variance(noise: FittedNoise, weights: np.ndarray, block: i
     return total
 
 
-def statistic_variance_dof(noise: FittedNoise, weights: np.ndarray) -> tuple[float, float]:
-    """(variance, effective degrees of freedom) of Σ w_t e_t: the variance as :func:`statistic_variance`,
-    and ν = 2 V² / Var(V̂) from the standard errors of the fitted variances (Satterthwaite), so that a z
-    built on it is referred to Student's t with ν degrees of freedom: a rate random walk estimated from a
-    few long-τ Allan points is uncertain, and a normal reference would then be anticonservative."""
-    model, errors = noise.model, noise.standard_errors
+@dataclass(frozen=True)
+class StatisticVariance:
+    """Var(Σ w_t e_t) under the fitted model and the standard error of that estimate."""
+
+    variance: float
+    standard_error: float
+
+    @property
+    def relative_error(self) -> float:
+        """se(V̂) / V̂."""
+        return self.standard_error / self.variance if self.variance > 0 else math.inf
+
+
+def statistic_variance_error(noise: FittedNoise, weights: np.ndarray) -> StatisticVariance:
+    """Var(Σ w_t e_t) and its standard error.
+
+    The variance V = Σ_i θ_i u_i(w) as :func:`statistic_variance` (θ the fitted variances, u_i the
+    variance of the statistic per unit of each); its standard error √(uᵀ Σ_θ u) by the delta method,
+    Σ_θ the fitter's GLS covariance of the variances (:class:`FittedNoise`; the white, walk and 1/f
+    estimates are correlated through the Allan variance they share, which the quadratic form keeps).
+    The walk's share counts even at a fitted σ_q² of 0: its standard error still says how large it could
+    be. A variance without a covariance row counts as uncertain by its own size."""
+    model = noise.model
     parts = {"long_run_white_variance": (_long_run_variance(model), float(np.dot(weights, weights)))}
-    # The walk's share counts even at a fitted σ_q² of 0: its standard error still says how large it could be.
     parts["rrw_variance"] = (model.rrw_variance, weighted_sum_variance(weights, "rrw"))
-    if model.flicker_variance or math.isfinite(errors.get("flicker_variance", math.nan)):
+    if model.flicker_variance or "flicker_variance" in noise.names:
         flicker_unit = weighted_sum_variance(weights, "flicker", d=model.flicker_d)
         parts["flicker_variance"] = (model.flicker_variance, flicker_unit)
     variance = sum(value * unit for value, unit in parts.values())
-    spread = 0.0
-    for name, (value, unit) in parts.items():
-        error = errors.get(name, math.nan)
-        spread += (unit * (error if math.isfinite(error) else value)) ** 2
-    dof = 2.0 * variance**2 / spread if spread > 0 else math.inf
-    return variance, max(dof, 1.0)
+    rows = [i for i, name in enumerate(noise.names) if name in parts]
+    units = np.array([parts[noise.names[i]][1] for i in rows])
+    spread = float(units @ noise.covariance[np.ix_(rows, rows)] @ units) if rows else 0.0
+    spread += sum((unit * value) ** 2 for name, (value, unit) in parts.items() if name not in noise.names)
+    return StatisticVariance(variance, math.sqrt(max(spread, 0.0)))
 
 
 def bounded_noise(
@@ -269,7 +299,7 @@ def bounded_noise(
         rrw_variance=floor("rrw_variance", new.rrw_variance, now.rrw_variance),
         flicker_variance=flicker,
     )
-    return FittedNoise(model, dict(errors) if lower_walk else dict(candidate.standard_errors))
+    return replace(current if lower_walk else candidate, model=model)
 
 
 def difference_covariance_bands(noise: FittedNoise, block: int, size: int) -> np.ndarray:
@@ -331,26 +361,62 @@ def revolution_bin_variance(noise: FittedNoise, weights: np.ndarray, start: int)
     return total
 
 
+#: The noise-model term of each fitter parameter the loop fits.
+_TERM_OF_PARAMETER = {
+    "white_variance": "white",
+    "rrw_variance": "rrw",
+    "flicker_variance": "flicker",
+    "ar_variance": "ar",
+}
+
+
+def _curve_columns(fit: ResidualFit) -> tuple[list[int], np.ndarray]:
+    """(rows of the fitter's covariance, design J): ∂σ_A²(τ)/∂θ at the used τ for the fitted variances."""
+    result, model = fit.result, fit.noise.model
+    rows = [i for i, name in enumerate(result.parameters) if name in _TERM_OF_PARAMETER]
+    columns = [
+        term_allan_variance(
+            _TERM_OF_PARAMETER[result.parameters[i]], fit.sizes, model.flicker_d, model.ar_coefficients
+        )
+        for i in rows
+    ]
+    return rows, np.column_stack(columns)
+
+
+def model_curve_error(fit: ResidualFit) -> np.ndarray:
+    """Standard error of the fitted model's Allan variance at each used τ: √diag(J Σ_θ Jᵀ), Σ_θ the
+    fitter's GLS covariance of the variances (TIM 2014 eq. (20) is linear in them)."""
+    rows, design = _curve_columns(fit)
+    covariance = np.asarray(fit.result.covariance)[np.ix_(rows, rows)]
+    return np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", design, covariance, design), 0.0))
+
+
 def noise_growth(
-    before: FittedNoise, after: FittedNoise, z: float = 2.0, *, new_flicker: bool = False
+    before: ResidualFit, after: ResidualFit, z: float = 2.0, *, new_flicker: bool = False
 ) -> list[str]:
-    """Noise variances that grew by more than ``z`` standard errors (and 20 %) from ``before``
-    (``new_flicker``: the 1/f term is new in ``after``, its variance is not compared)."""
-    grown = []
-    pairs = (
-        ("long_run_white_variance", _long_run_variance(before.model), _long_run_variance(after.model)),
-        ("rrw_variance", before.model.rrw_variance, after.model.rrw_variance),
-        ("flicker_variance", before.model.flicker_variance, after.model.flicker_variance),
-    )
-    for name, value_before, value_after in pairs:
-        if new_flicker and name == "flicker_variance":
-            continue
-        error = before.standard_errors.get(name, math.nan)
-        if not math.isfinite(error) or error <= 0:
-            error = 0.1 * value_before
-        if value_after > value_before + z * error and value_after > 1.2 * value_before:
-            grown.append(f"{name} {value_before:.3g} -> {value_after:.3g}")
-    return grown
+    """The τ at which the fitted model's Allan variance grew by more than ``z`` of its standard errors
+    (:func:`model_curve_error` of ``before``) and by more than 20 %, from ``before`` to ``after``
+    (``new_flicker``: the 1/f term is new in ``after``; its own share is not counted as growth).
+
+    Removing a deterministic effect s that is really there lowers the expected Allan variance at every τ
+    by the effect's own, E σ̂_A²(e + s) = E σ̂_A²(e) + σ_A²(s) for s independent of e; what a wrongly
+    fitted effect leaves behind adds power that the refitted model must absorb. The comparison is of the
+    curve, not of the single variances: the white, walk and 1/f estimates are correlated across τ, and
+    removing a slow effect moves power between the walk and the 1/f term by about their GLS standard
+    errors without adding any. This check can only reject a candidate, never name one, so it does not
+    enter the false-alarm rate of a clean record."""
+    grown_after = after.model
+    if new_flicker:
+        model = after.noise.model
+        grown_after = grown_after - model.flicker_variance * term_allan_variance(
+            "flicker", after.sizes, model.flicker_d
+        )
+    limit = before.model + z * model_curve_error(before)
+    grown = np.flatnonzero((grown_after > limit) & (grown_after > 1.2 * before.model))
+    return [
+        f"Allan variance at τ = {before.tau[i]:.4g} s {before.model[i]:.3g} -> {grown_after[i]:.3g}"
+        for i in grown
+    ]
 
 
 def simulate_block_sums(noise: FittedNoise, length: int, block: int, rng: np.random.Generator) -> np.ndarray:
