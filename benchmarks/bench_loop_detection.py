@@ -87,6 +87,32 @@ PAIRS = (
 )
 
 
+#: How each decision's null distribution is obtained (what the false-alarm rates below test).
+NULL_DISTRIBUTIONS = [
+    "## The null distribution of each decision",
+    "",
+    "| decision | statistic | reference under the fitted model |",
+    "|---|---|---|",
+    "| spikes | max robust abs z about the running median | normal tail, Bonferroni over samples and axes "
+    "(the robust scale's bias is removed; tests/test_effects.py checks the tail at 3σ) |",
+    "| steps, warm-up, temperature | GLS linear statistic L = Σ w_t e_t | exactly Gaussian given the noise "
+    "variances; the variance is taken at its upper (1 − γ) confidence bound from the fitter's GLS "
+    "covariance (delta method) and γ = 0.1 × the detector's rate is added to the p-value (Berger & Boos "
+    "1994); only the bound's coverage is asymptotic |",
+    "| sinusoid | max periodogram ordinate / (model spectrum × median level) | exact: an Exp(1) ordinate "
+    "over the median of a block of Exp(1) ordinates (Rényi's representation), Bonferroni over ordinates |",
+    "| colored noise | log ratio of the median whitened ordinates at 10 % and 42 % of f_s | ratio of "
+    "medians of independent Exp(1) ordinates (every third ordinate), exact cumulant generating function, "
+    "Lugannani–Rice tail (relative error O(1/M), M in the thousands) |",
+    "| 1/f noise | Δχ² of the nested GLS Allan-variance fits | χ²₁ (F(1, ν) when over-dispersed): "
+    "asymptotic, Gaussian Allan-variance estimates assumed |",
+    "| final misfit | largest abs z of the Allan variance over τ and axes | short τ (> 2000 differences): "
+    "χ²_ν; long τ: sequential parametric bootstrap from the fitted model, exact size "
+    "(carousel_theory/closed_loop/calibration.py) |",
+    "",
+]
+
+
 @dataclass
 class CleanTally:
     runs: int = 0
@@ -337,6 +363,7 @@ def write_document(args: argparse.Namespace) -> None:
         "",
         commands,
         "",
+        *NULL_DISTRIBUTIONS,
         *_document_sections(args),
     ]
     args.out.parent.mkdir(parents=True, exist_ok=True)

@@ -323,3 +323,70 @@ def test_effects_that_mask_each_other_are_both_named_on_one_hour(effects, rrw_va
     )
     result = run_loop(recording)
     assert set(result.effects) == expected, result.steps
+
+
+# --- one error model: the fitter's GLS covariance ------------------------------------------------------
+
+
+def test_the_loop_uses_the_fitters_standard_errors():
+    """The loop's standard errors are the fitter's GLS ones (no second error model); an AR innovation
+    variance's error is scaled by 1/(1 − Σ a_j)² to the long-run variance the loop's tests use."""
+    from carousel_theory.closed_loop.residual_model import ModelTerms, fit_residual_model
+
+    values = _recording(samples=60_000).rates["wx"]
+    fit = fit_residual_model(values, RATE, ModelTerms(flicker=True))
+    fitter = fit.result.standard_errors
+    assert fit.noise.names == ("long_run_white_variance", "rrw_variance", "flicker_variance")
+    assert fit.noise.standard_errors["long_run_white_variance"] == pytest.approx(
+        fitter["white_variance"], rel=1e-12
+    )
+    assert fit.noise.standard_errors["rrw_variance"] == pytest.approx(fitter["rrw_variance"], rel=1e-12)
+    assert fit.noise.standard_errors["flicker_variance"] == pytest.approx(
+        fitter["flicker_variance"], rel=1e-12
+    )
+    colored = _recording(["colored_noise:coefficient=0.4"], samples=60_000).rates["wx"]
+    ar_fit = fit_residual_model(colored, RATE, ModelTerms(ar_order=2))
+    gain = 1.0 / (1.0 - sum(ar_fit.noise.model.ar_coefficients)) ** 2
+    expected = ar_fit.result.standard_errors["ar_variance"] * gain
+    assert ar_fit.noise.standard_errors["long_run_white_variance"] == pytest.approx(expected, rel=1e-12)
+
+
+def test_noise_growth_is_judged_on_the_allan_variance_curve():
+    """No growth when nothing changes; a curve raised by half at one τ grows where half its value exceeds
+    2 of its GLS standard errors (τ ≈ 10 s of a 600 s record), not where the curve is that uncertain (the
+    longest τ)."""
+    from carousel_theory.closed_loop.residual_model import (
+        ModelTerms,
+        fit_residual_model,
+        model_curve_error,
+        noise_growth,
+    )
+
+    fit = fit_residual_model(_recording(samples=60_000).rates["wy"], RATE, ModelTerms())
+    relative = model_curve_error(fit) / fit.model
+    assert noise_growth(fit, fit) == []
+    middle = int(np.flatnonzero(np.isclose(fit.tau, 10.24))[0])
+    assert 2.0 * relative[middle] < 0.5 < 2.0 * relative[-1]  # the premise of the two cases below
+    for index, expected in ((middle, 1), (len(fit.tau) - 1, 0)):
+        raised = fit.model.copy()
+        raised[index] *= 1.5
+        assert len(noise_growth(fit, replace(fit, model=raised))) == expected
+    assert relative[0] < 0.05  # white noise pins the shortest τ
+
+
+def test_bounded_p_value_is_the_supremum_over_the_variance_bound_plus_its_noncoverage():
+    """Berger–Boos: p = tests · 2Φ̄(|L|/√V_γ) + γ with V_γ = V + Φ̄⁻¹(γ) se; with se = 0 it is the exact
+    Gaussian p-value plus γ, and at the threshold it equals α."""
+    from scipy import stats
+
+    from carousel_theory.closed_loop.detection import NUISANCE_SHARE, bounded_threshold, bounded_two_sided
+
+    alpha, tests = 1e-3, 16
+    gamma = NUISANCE_SHARE * alpha
+    z, log10_p = bounded_two_sided(5.0, 1.0, 0.0, tests, alpha)
+    assert z == 5.0
+    assert 10**log10_p == pytest.approx(tests * 2 * stats.norm.sf(5.0) + gamma, rel=1e-12)
+    threshold = bounded_threshold(alpha, tests)
+    assert 10 ** bounded_two_sided(threshold, 1.0, 0.0, tests, alpha)[1] == pytest.approx(alpha, rel=1e-9)
+    z_uncertain, _ = bounded_two_sided(5.0, 1.0, 0.2, tests, alpha)
+    assert z_uncertain == pytest.approx(5.0 / np.sqrt(1.0 + stats.norm.isf(gamma) * 0.2), rel=1e-12)

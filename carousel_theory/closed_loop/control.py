@@ -9,8 +9,8 @@ One iteration k
        does not have to grow at any τ by more than 2 of its GLS standard errors to absorb what a
        deterministic effect leaves (:func:`~carousel_theory.closed_loop.residual_model.noise_growth`),
        and the effect explains its own evidence (:data:`~carousel_theory.closed_loop.detectors.VERIFIERS`
-       no longer significant at the iteration's rate; for colored noise, whose real filters are not exactly AR(p ≤ 4), a 95 % drop
-       of the evidence's −log p counts as "most of it").
+       no longer significant at the iteration's rate; for colored noise, whose real filters are not
+       exactly AR(p ≤ 4), a 95 % drop of the evidence's −log p counts as "most of it").
     4. **Stop** when nothing is significant (``none`` if nothing was added) or every candidate is rejected
        (``unexplained``). At the end the Allan variance is tested against the final model by a parametric
        bootstrap; a misfit appends ``unexplained``.
