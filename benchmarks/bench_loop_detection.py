@@ -24,6 +24,7 @@ import argparse
 import json
 import time
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -75,7 +76,6 @@ PAIRS = (
         ("warmup:amplitude=4e-3,time_constant=120", "flicker:variance=5e-8"),
         ("warmup", "flicker"),
     ),
-    PairCase("warm-up (4e-3) alone", ("warmup:amplitude=4e-3,time_constant=120",), ("warmup",)),
     PairCase("1/f noise alone", ("flicker:variance=5e-8",), ("flicker",)),
     PairCase(
         "temperature under a strong random walk (σ_q² = 1e-10)",
@@ -83,7 +83,6 @@ PAIRS = (
         ("temperature",),
         rrw_variance=1e-10,
     ),
-    PairCase("temperature alone (σ_q² = 1e-11)", ("temperature:coefficient=5e-3",), ("temperature",)),
 )
 
 
@@ -152,7 +151,11 @@ def _what_fired(result: LoopResult) -> list[str]:
     return fired or [last.decision]
 
 
-def run_clean(counts: dict[int, int]) -> dict[int, CleanTally]:
+def run_clean(
+    counts: dict[int, int], stored: Callable[[int, CleanTally], None] | None = None
+) -> dict[int, CleanTally]:
+    """Clean records of each duration; ``stored`` is called after every record (a partial run keeps its
+    counts)."""
     tallies = {}
     for duration, count in counts.items():
         tally = CleanTally()
@@ -164,6 +167,8 @@ def run_clean(counts: dict[int, int]) -> dict[int, CleanTally]:
             tally.alarms += result.effects != ["none"]
             tally.outcomes[", ".join(result.effects)] += 1
             tally.fired.update(_what_fired(result))
+            if stored is not None:
+                stored(duration, tally)
         tallies[duration] = tally
         print(
             f"clean {duration} s: {tally.alarms}/{tally.runs}, "
@@ -189,7 +194,10 @@ def run_ladders(seeds: int) -> list[tuple]:
     return rows
 
 
-def run_pairs(seeds: int) -> list[tuple[PairCase, dict[str, int], int, int]]:
+def run_pairs(
+    seeds: int, stored: Callable[[list], None] | None = None
+) -> list[tuple[PairCase, dict[str, int], int, int]]:
+    """Each pair case on ``seeds`` 1 h records; ``stored`` is called after every case with the rows so far."""
     rows = []
     for case in progress(PAIRS, label="pairs"):
         named = dict.fromkeys(case.expected, 0)
@@ -201,6 +209,8 @@ def run_pairs(seeds: int) -> list[tuple[PairCase, dict[str, int], int, int]]:
             both += all(name in result.effects for name in case.expected)
             other += any(e not in (*case.expected, "none", "unexplained") for e in result.effects)
         rows.append((case, named, both, other))
+        if stored is not None:
+            stored(rows)
     return rows
 
 
@@ -278,20 +288,33 @@ def _load(parts: Path, name: str) -> object:
     return json.loads((parts / f"{name}.json").read_text(encoding="utf-8"))
 
 
+def _clean_record(tally: CleanTally) -> list:
+    return [tally.runs, tally.alarms, dict(tally.outcomes), dict(tally.fired)]
+
+
 def run_section(section: str, args: argparse.Namespace) -> None:
-    """Run one section and store its tallies as JSON in ``args.parts`` (so sections can run apart)."""
+    """Run one section and store its tallies as JSON in ``args.parts`` (so sections can run apart), as it
+    goes: a section stopped early leaves the counts it reached, and the document shows those counts."""
+    _save(
+        args.parts,
+        f"arguments_{section}",
+        {"clean": args.clean, "seeds": args.seeds, "pair_seeds": args.pair_seeds},
+    )
     if section == "clean":
         counts = dict(zip(CLEAN_DURATIONS, args.clean, strict=True))
         for duration in args.durations or CLEAN_DURATIONS:
-            tally = run_clean({duration: counts[duration]})[duration]
-            record = [tally.runs, tally.alarms, dict(tally.outcomes), dict(tally.fired)]
-            _save(args.parts, f"clean_{duration}", record)
+            run_clean(
+                {duration: counts[duration]},
+                lambda length, tally: _save(args.parts, f"clean_{length}", _clean_record(tally)),
+            )
     elif section == "pairs":
-        rows = run_pairs(args.pair_seeds)
-        _save(
-            args.parts,
-            "pairs",
-            [[PAIRS.index(case), named, both, other] for case, named, both, other in rows],
+        run_pairs(
+            args.pair_seeds,
+            lambda rows: _save(
+                args.parts,
+                "pairs",
+                [[PAIRS.index(case), named, both, other] for case, named, both, other in rows],
+            ),
         )
     else:
         _save(
@@ -299,11 +322,6 @@ def run_section(section: str, args: argparse.Namespace) -> None:
             "effects",
             {"ladders": run_ladders(args.seeds), "outside": dict(run_outside(args.seeds))},
         )
-    _save(
-        args.parts,
-        f"arguments_{section}",
-        {"clean": args.clean, "seeds": args.seeds, "pair_seeds": args.pair_seeds},
-    )
 
 
 MISSING = "Not measured: this section did not finish in the run that wrote this document."
