@@ -131,9 +131,10 @@ def bounded_two_sided(
     nuisance θ is handled as Berger & Boos (1994, JASA 89, 1012) do: with γ = NUISANCE_SHARE · α and
     V_γ = V̂ + Φ̄⁻¹(γ) se(V̂) an upper (1 − γ) confidence bound of V, p = tests · 2Φ̄(|L|/√V_γ) + γ is a
     valid p-value (the supremum of the exact p over the confidence set, plus its non-coverage). Only the
-    bound's coverage is asymptotic (V̂ is a linear function of GLS estimates); the Student-t reference with
-    Satterthwaite degrees of freedom it replaces also assumed L independent of V̂, which it is not (both
-    are large when the record's low-frequency power is)."""
+    bound's coverage is asymptotic (V̂ is a linear function of GLS estimates), and the weights w, chosen
+    from the fitted variances, are treated as fixed (they depend on the data only through the Allan
+    variance). The Student-t reference with Satterthwaite degrees of freedom it replaces also assumed L
+    independent of V̂, which it is not (both are large when the record's low-frequency power is)."""
     z = projection / bounded_standard_deviation(variance, standard_error, alpha)
     log_p = math.log(2.0 * max(tests, 1)) + float(stats.norm.logsf(abs(z)))
     return z, min(0.0, float(np.logaddexp(log_p, math.log(NUISANCE_SHARE * alpha))) / math.log(10.0))
