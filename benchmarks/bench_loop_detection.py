@@ -152,14 +152,14 @@ def _what_fired(result: LoopResult) -> list[str]:
 
 
 def run_clean(
-    counts: dict[int, int], stored: Callable[[int, CleanTally], None] | None = None
+    counts: dict[int, int], stored: Callable[[int, CleanTally], None] | None = None, first_seed: int = 0
 ) -> dict[int, CleanTally]:
-    """Clean records of each duration; ``stored`` is called after every record (a partial run keeps its
-    counts)."""
+    """Clean records of each duration, seeds ``first_seed`` onwards; ``stored`` is called after every
+    record (a partial run keeps its counts)."""
     tallies = {}
     for duration, count in counts.items():
         tally = CleanTally()
-        for seed in progress(range(count), label=f"clean {duration} s"):
+        for seed in progress(range(first_seed, first_seed + count), label=f"clean {duration} s"):
             started = time.monotonic()
             result = run_loop(_recording(int(duration * RATE), [], 10_000 + seed))
             tally.seconds += time.monotonic() - started
@@ -303,9 +303,12 @@ def run_section(section: str, args: argparse.Namespace) -> None:
     if section == "clean":
         counts = dict(zip(CLEAN_DURATIONS, args.clean, strict=True))
         for duration in args.durations or CLEAN_DURATIONS:
+            # Records from a later seed go to their own part; the document sums the parts of a duration.
+            name = f"clean_{duration}" + (f"_from{args.first_seed}" if args.first_seed else "")
             run_clean(
                 {duration: counts[duration]},
-                lambda length, tally: _save(args.parts, f"clean_{length}", _clean_record(tally)),
+                lambda _, tally, name=name: _save(args.parts, name, _clean_record(tally)),
+                args.first_seed,
             )
     elif section == "pairs":
         run_pairs(
@@ -334,10 +337,15 @@ def _maybe(parts: Path, name: str) -> Any:
 def _document_sections(args: argparse.Namespace) -> list[str]:
     tallies = {}
     for duration in CLEAN_DURATIONS:
-        stored = _maybe(args.parts, f"clean_{duration}")
-        if stored is not None:
-            runs, alarms, outcomes, fired = stored
-            tallies[duration] = CleanTally(runs, alarms, Counter(outcomes), Counter(fired))
+        for path in sorted(args.parts.glob(f"clean_{duration}.json")) + sorted(
+            args.parts.glob(f"clean_{duration}_from*.json")
+        ):
+            runs, alarms, outcomes, fired = json.loads(path.read_text(encoding="utf-8"))
+            tally = tallies.setdefault(duration, CleanTally())
+            tally.runs += runs
+            tally.alarms += alarms
+            tally.outcomes.update(outcomes)
+            tally.fired.update(fired)
     lines = _clean_lines(tallies)
     missing = [f"{d:g} s" for d in CLEAN_DURATIONS if d not in tallies]
     if missing:
@@ -407,6 +415,9 @@ def main() -> int:
         nargs="*",
         choices=CLEAN_DURATIONS,
         help="clean durations to run (default all)",
+    )
+    parser.add_argument(
+        "--first-seed", type=int, default=0, help="first clean record's seed (to split a duration over runs)"
     )
     parser.add_argument("--seeds", type=int, default=10, help="records per single effect and amplitude")
     parser.add_argument("--pair-seeds", type=int, default=10, help="records per pair case (1 h each)")
