@@ -11,8 +11,8 @@ name                    detection statistic (null: the fitted model; Bonferroni 
 ``temperature``         |z| of the GLS coefficient of the temperature column
 ``steps``               max over t₀ of |z| of the GLS estimate of a bias step after sample t₀
 ``spikes``              max robust |z| of the residual about its running median (trimmed scale)
-``sinusoid``            max of the Hann periodogram / (model PSD × local median level), ~Exp(1)
-``colored_noise``       z of log(median level 5–15 % f_s / median level 35–50 % f_s) vs. the model
+``sinusoid``            max of the Hann periodogram / (model PSD × local median level), exact tail
+``colored_noise``       log(median level 5–15 % f_s / median level 35–50 % f_s), exact median tails
 ``flicker``             F = Δχ²/dispersion of the Allan-variance fit when a 1/f (d = 1/2) term is added
 ``quantization``        lattice test: every sample an integer multiple of one step (an observation)
 ``none``                nothing significant

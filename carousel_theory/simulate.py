@@ -20,7 +20,7 @@ from __future__ import annotations
 import inspect
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -299,7 +299,8 @@ def _simulate_axis(
     resolved: list,
     rng: np.random.Generator,
 ) -> np.ndarray:
-    """One axis: white noise (through any noise filter), bias, RRW, 1/f, additive, then output effects."""
+    """One axis: white noise (through any noise filter), bias, the rest of ``declared``
+    (:func:`sample_noise`), additive, then output effects."""
     samples = len(time)
     white = (
         sample_white(samples, rng=rng, variance=declared.white_variance)
@@ -310,16 +311,8 @@ def _simulate_axis(
     for name, parameters in resolved:
         if name in CATALOGUE and CATALOGUE[name].kind == "noise_filter":
             white = CATALOGUE[name].inject(white, time, temperature, rng, parameters)
-    signal = bias + white
-    if declared.rrw_variance:
-        signal = signal + sample_rate_random_walk(samples, rng=rng, variance=declared.rrw_variance)
-    if declared.flicker_variance:
-        signal = signal + sample_flicker(
-            samples, rng=rng, d=declared.flicker_d, variance=declared.flicker_variance
-        )
-    if declared.quantization:  # a white angle error of variance Q², differenced into the rate
-        angle = declared.quantization * rng.standard_normal(samples + 1)
-        signal = signal + declared.sample_rate * np.diff(angle)
+    # The rest of the declared model (RRW, 1/f) comes from the one sampler of a NoiseModel.
+    signal = bias + white + sample_noise(replace(declared, bias=0.0, white_variance=0.0), samples, rng=rng)
     for name, parameters in resolved:
         if name in OUTSIDE_CATALOGUE:
             signal = signal + OUTSIDE_CATALOGUE[name][0](time, **parameters)

@@ -99,7 +99,7 @@ def test_clean_recording_triggers_no_detector():
             id="temperature",
         ),
         pytest.param(
-            "steps:size=2e-3,time=0.4",
+            "steps:size=3e-3,time=0.4",
             "steps",
             lambda d: abs(d.details["time_s"] - 0.4 * 299.99) < 2.0,
             id="steps",
@@ -119,7 +119,7 @@ def test_clean_recording_triggers_no_detector():
         pytest.param(
             "colored_noise:coefficient=0.3",
             "colored_noise",
-            lambda d: d.details["signed_z"] > 0,
+            lambda d: d.details["signed_log_ratio"] > 0,
             id="colored_noise",
         ),
         pytest.param("flicker:variance=1e-6", "flicker", lambda d: d.statistic > 0, id="flicker"),

@@ -3,8 +3,9 @@ add it, refit, and report the error before and after — until nothing significa
 
 Rooms, from the lowest floor up:
 
-- :mod:`~carousel_theory.closed_loop.residual_model` — the noise model of one axis and its fit (the only
-  room that knows how either works);
+- :mod:`~carousel_theory.closed_loop.residual_model` — the noise model of one axis and its fit, an adapter
+  over :class:`~carousel_theory.noise_model.NoiseModel` and :mod:`carousel_theory.fitting` (the only room
+  that reads either);
 - :mod:`~carousel_theory.closed_loop.view` — the residual of every axis under one model, a plain data view;
 - :mod:`~carousel_theory.closed_loop.linear_statistics` — GLS statistics, their variances, refits;
 - :mod:`~carousel_theory.closed_loop.detection` — the detectors' contract (``Detector.detect``,

@@ -31,7 +31,11 @@ rate of the iteration in which it was added.
   points, which pulls its z-values towards 0: the test is conservative for the estimation of the
   parameters. B = ⌈1/α'⌉ − 1 with α' the level of this half (the smallest B at which p can reach α'),
   the model being rejected when no replicate reaches T; the replicates are drawn sequentially and stopped
-  at the first T* ≥ T, which makes p > α' certain (Besag & Clifford 1991).
+  at the first T* ≥ T, which makes p > α' certain (Besag & Clifford 1991). The size of a Monte Carlo
+  test does not depend on B; B sets its power and the Monte Carlo error of p: at α = 0.01, α' = α/8 and
+  B = 799, a p-value of exactly α' is estimated with standard error √(α'(1 − α')/B) ≈ α' (so the
+  decision at the threshold is a coin flip), and a true p of α'/10 is rejected with probability
+  (1 − α'/10)^B ≈ 0.90.
 
 Each half runs at half the final test's rate (Bonferroni); the reported p is 2 min(p_short, p_long).
 """

@@ -5,11 +5,12 @@ One iteration k
        detector at its share of α (:mod:`carousel_theory.closed_loop.calibration`).
     2. **Try** the significant candidates, the three smallest p-values first: fit the effect
        (:data:`~carousel_theory.closed_loop.detectors.REMEDIES`), refit the noise model, evaluate again.
-    3. **Keep** the first candidate for which the headline error drops, no noise variance has to grow by
-       more than 2 standard errors to absorb what a deterministic effect leaves, and the effect explains
-       its own evidence (:data:`~carousel_theory.closed_loop.detectors.VERIFIERS` no longer significant at
-       the iteration's rate; for colored noise, whose real filters are not exactly AR(p ≤ 4), a 95 % drop
-       of the evidence's −log p counts as "most of it").
+    3. **Keep** the first candidate for which the headline error drops, the noise model's Allan variance
+       does not have to grow at any τ by more than 2 of its GLS standard errors to absorb what a
+       deterministic effect leaves (:func:`~carousel_theory.closed_loop.residual_model.noise_growth`),
+       and the effect explains its own evidence (:data:`~carousel_theory.closed_loop.detectors.VERIFIERS`
+       no longer significant at the iteration's rate; for colored noise, whose real filters are not
+       exactly AR(p ≤ 4), a 95 % drop of the evidence's −log p counts as "most of it").
     4. **Stop** when nothing is significant (``none`` if nothing was added) or every candidate is rejected
        (``unexplained``). At the end the Allan variance is tested against the final model by a parametric
        bootstrap; a misfit appends ``unexplained``.
@@ -91,7 +92,7 @@ def _noise_grown(loop: LoopInput, current: Evaluation, candidate: Evaluation) ->
     grown = []
     new_flicker = candidate.view.spec.terms.flicker and not current.view.spec.terms.flicker
     for axis in loop.axes:
-        before, after = current.view.fits[axis].noise, candidate.view.fits[axis].noise
+        before, after = current.view.fits[axis], candidate.view.fits[axis]
         grown += [f"{axis} {change}" for change in noise_growth(before, after, new_flicker=new_flicker)]
     return grown
 

@@ -17,15 +17,16 @@ from scipy import stats
 from scipy.linalg import solveh_banded
 
 from carousel_theory.closed_loop.residual_model import (
-    AxisNoise,
+    FittedNoise,
     ModelTerms,
     ResidualFit,
+    StatisticVariance,
     bounded_noise,
     difference_covariance_bands,
     fit_residual_model,
     ranking_statistic_variance,
     statistic_variance,
-    statistic_variance_dof,
+    statistic_variance_error,
 )
 from carousel_theory.closed_loop.view import ResidualView
 
@@ -65,17 +66,17 @@ def _expand(view: ResidualView, block_weights: np.ndarray) -> np.ndarray:
     return np.concatenate((expanded, np.zeros(len(view.time) - len(expanded))))
 
 
-def _bands(view: ResidualView, noise: AxisNoise) -> np.ndarray:
+def _bands(view: ResidualView, noise: FittedNoise) -> np.ndarray:
     block = gls_block(view)
     return difference_covariance_bands(noise, block, len(view.time) // block - 1)
 
 
-def _noise(view: ResidualView, axis: str, noise: AxisNoise | None) -> AxisNoise:
+def _noise(view: ResidualView, axis: str, noise: FittedNoise | None) -> FittedNoise:
     return view.fits[axis].noise if noise is None else noise
 
 
 def gls_weights(
-    view: ResidualView, axis: str, regressor: np.ndarray, noise: AxisNoise | None = None
+    view: ResidualView, axis: str, regressor: np.ndarray, noise: FittedNoise | None = None
 ) -> np.ndarray:
     """Sample weights w of the GLS projection on ``regressor``: w = Dᵀ Σ_Δ⁻¹ D g, D the first difference
     (which also removes the bias), Σ_Δ the tridiagonal covariance of the differences."""
@@ -111,7 +112,7 @@ def step_scan(view: ResidualView, axis: str) -> StepScan:
     return StepScan(u, weights, float(solved[len(u) // 2]))
 
 
-def refit(view: ResidualView, axis: str, signal: np.ndarray, terms: ModelTerms | None = None) -> AxisNoise:
+def refit(view: ResidualView, axis: str, signal: np.ndarray, terms: ModelTerms | None = None) -> FittedNoise:
     """The noise model of the axis refitted on its residual minus ``signal`` (the view's terms, or
     ``terms``), with the same Allan-variance weights as the view's fit."""
     fit = fit_residual_model(
@@ -169,7 +170,7 @@ def _competing_terms(
     return (terms if p_value < COMPETING_TERM_LEVEL else ModelTerms(terms.ar_order)), p_value
 
 
-def ranking_noise(view: ResidualView, axis: str) -> AxisNoise:
+def ranking_noise(view: ResidualView, axis: str) -> FittedNoise:
     """The noise model under which the points of a scan are ranked: the view's, or, when a 1/f term the
     model lacks is asked for by the residual itself (:func:`_competing_terms`), the fit with it."""
     terms = ModelTerms(view.spec.terms.ar_order, flicker=True)
@@ -181,13 +182,15 @@ def ranking_noise(view: ResidualView, axis: str) -> AxisNoise:
 
 @dataclass(frozen=True)
 class RegressorTest:
-    """z of a regressor's GLS amplitude in the residual, the amplitude, the degrees of freedom of the
-    Student t that z is referred to, and the p-value of a competing 1/f term on the residual without the
-    regressor (1 when none was tested)."""
+    """A regressor's GLS statistic L = Σ w_t e_t in the residual: ``z`` = L/√V̂ under the fitted model (the
+    ranking value), the amplitude, L, its variance and that variance's standard error
+    (:class:`~carousel_theory.closed_loop.residual_model.StatisticVariance`, None when only ranked), and
+    the p-value of a competing 1/f term on the residual without the regressor (1 when none was tested)."""
 
     z: float
     amplitude: float
-    dof: float
+    projection: float = 0.0
+    spread: StatisticVariance | None = None
     competing_p: float = 1.0
 
 
@@ -198,9 +201,9 @@ def regressor_test(
     *,
     quick: bool = False,
     refit_terms: ModelTerms | None = None,
-    ranking: AxisNoise | None = None,
+    ranking: FittedNoise | None = None,
 ) -> RegressorTest:
-    """The GLS statistic Σ w_t e_t of ``regressor`` and its z under the fitted model.
+    """The GLS statistic Σ w_t e_t of ``regressor``, its z under the fitted model and its variance.
 
     ``quick`` ranks points of a scan (no refit; under ``ranking`` when given, else under the view's fit
     without its 1/f term). With ``refit_terms`` the noise model is
@@ -214,7 +217,7 @@ def regressor_test(
     weights = gls_weights(view, axis, regressor)
     information = float(np.dot(weights, regressor))
     if information <= 0.0:
-        return RegressorTest(0.0, 0.0, math.inf)
+        return RegressorTest(0.0, 0.0)
     amplitude = float(np.dot(weights, view.residuals[axis])) / information
     noise = view.fits[axis].noise
     if quick:
@@ -222,9 +225,7 @@ def regressor_test(
             variance = statistic_variance(noise, weights, include_flicker=False)
         else:
             variance = ranking_statistic_variance(ranking, weights, max(gls_block(view), 16))
-        return RegressorTest(
-            float(np.dot(weights, view.residuals[axis])) / math.sqrt(variance), amplitude, math.inf
-        )
+        return RegressorTest(float(np.dot(weights, view.residuals[axis])) / math.sqrt(variance), amplitude)
     competing_p = 1.0
     if refit_terms is not None:
         signal = amplitude * (regressor - regressor.mean())
@@ -232,6 +233,7 @@ def regressor_test(
         refitted = refit(view, axis, signal, terms)
         noise = bounded_noise(noise, refitted, keep_flicker_floor=not terms.flicker)
         weights = gls_weights(view, axis, regressor, noise)
-    variance, dof = statistic_variance_dof(noise, weights)
+    spread = statistic_variance_error(noise, weights)
     projection = float(np.dot(weights, view.residuals[axis]))
-    return RegressorTest(projection / math.sqrt(max(variance, 1e-300)), amplitude, dof, competing_p)
+    z = projection / math.sqrt(max(spread.variance, 1e-300))
+    return RegressorTest(z, amplitude, projection, spread, competing_p)

@@ -8,7 +8,8 @@ import math
 import numpy as np
 from scipy import ndimage, optimize, stats
 
-from carousel_theory.closed_loop.detection import Detection, log10_two_sided, threshold_two_sided
+from carousel_theory.closed_loop.detection import Detection, log10_two_sided, threshold_two_sided, untestable
+from carousel_theory.closed_loop.null_distributions import exponential_over_median_log_sf
 from carousel_theory.closed_loop.residual_model import spectral_density
 from carousel_theory.closed_loop.view import FittedEffect, ResidualView
 
@@ -30,11 +31,16 @@ def hann_periodogram(values: np.ndarray, sample_rate: float) -> tuple[np.ndarray
     return frequencies, power
 
 
+def _block_edges(length: int, block: int) -> np.ndarray:
+    """Edges of the blocks of :func:`_block_median`: ⌊length / block⌋ blocks of ``block`` to 2 block − 1
+    values."""
+    return np.linspace(0, length, max(1, length // block) + 1).astype(int)
+
+
 def _block_median(values: np.ndarray, block: int) -> np.ndarray:
     """A running-median-like level: the median of each block of ``block`` values, linearly interpolated
     between block centres (O(n), unlike a true running median, and just as robust to isolated lines)."""
-    count = max(1, len(values) // block)
-    edges = np.linspace(0, len(values), count + 1).astype(int)
+    edges = _block_edges(len(values), block)
     centres = 0.5 * (edges[:-1] + edges[1:] - 1)
     medians = np.array([np.median(values[a:b]) for a, b in itertools.pairwise(edges)])
     return np.interp(np.arange(len(values)), centres, medians)
@@ -106,10 +112,20 @@ class SpikesDetector:
 
 
 class SinusoidDetector:
-    """max of the Hann periodogram / (model spectrum × local median level): Exp(1) under the model."""
+    """max of the Hann periodogram / (model spectrum × local median level), Bonferroni over ordinates.
+
+    Under the fitted model each whitened ordinate X is Exp(1) and the level is the median M of a block of
+    ``level_block`` to 2·``level_block`` − 1 whitened ordinates over ln 2 (interpolated between block
+    centres). For a level λ M_a + (1 − λ) M_b of two blocks' medians, P(X > u · level) =
+    E[e^{−u(λM_a + (1−λ)M_b)/ln 2}] is log-convex in λ and so at most its value at λ ∈ {0, 1}: the exact
+    tail of one median, :func:`~carousel_theory.closed_loop.null_distributions.exponential_over_median_log_sf`
+    at the smallest block (the ordinate's own membership of its block only lowers the ratio, so leaving
+    it out is conservative). At u ≈ 17 (the threshold of a 1 h record) the asymptotic Exp(1) tail e^{−u}
+    is 1.7 times too small for blocks of 512."""
 
     name = "sinusoid"
     stochastic = False
+    statistic_name = "max periodogram / (model spectrum × local median level)"
     lowest_bin = 8
     level_block = 512
 
@@ -120,27 +136,40 @@ class SinusoidDetector:
         level = _block_median(whitened, self.level_block) / math.log(2.0)
         return frequencies, whitened / level
 
+    def _log_sf(self, ratio: float, length: int) -> float:
+        """log P(one ordinate's ratio > ``ratio``) under the model (class docstring), at the smallest median
+        block of a periodogram of ``length`` ordinates (the heaviest tail)."""
+        smallest = int(np.diff(_block_edges(length, self.level_block)).min())
+        return exponential_over_median_log_sf(ratio, smallest)
+
+    def _threshold(self, alpha: float, tests: int, length: int) -> float:
+        """The ratio at which the Bonferroni p-value tests · P(ratio > u) equals ``alpha``."""
+        target = math.log(alpha / tests)
+        return float(optimize.brentq(lambda u: self._log_sf(u, length) - target, 0.0, 10.0 - 10.0 * target))
+
     def detect(self, view: ResidualView, alpha: float) -> Detection:
-        best, best_axis, best_frequency, axes, count = 0.0, "", 0.0, [], 1
+        peaks, length = {}, 0
         for axis in view.axes:
             frequencies, ratio = self._ratios(view, axis)
-            if len(ratio) == 0:
-                continue
-            count = len(ratio) * len(view.axes)
-            index = int(np.argmax(ratio))
-            if ratio[index] > math.log(count / alpha):
-                axes.append(axis)
-            if ratio[index] > best:
-                best, best_axis, best_frequency = float(ratio[index]), axis, float(frequencies[index])
-        # P(max of `count` Exp(1) > u) ≤ count e^{−u}
+            if len(ratio):
+                index = int(np.argmax(ratio))
+                peaks[axis], length = (float(ratio[index]), float(frequencies[index])), len(ratio)
+        if not peaks:
+            note = "the record is too short for a periodogram"
+            return untestable(self.name, self.statistic_name, math.inf, note)
+        tests = length * len(view.axes)
+        threshold = self._threshold(alpha, tests, length)
+        best_axis = max(peaks, key=lambda axis: peaks[axis][0])
+        best, best_frequency = peaks[best_axis]
+        log_p = math.log(tests) + self._log_sf(best, length)
         return Detection(
             self.name,
             best,
-            "max periodogram / (model spectrum × local level)",
-            math.log(count / alpha),
-            min(0.0, (math.log(count) - best) / math.log(10.0)),
-            bool(axes),
-            tuple(axes),
+            self.statistic_name,
+            threshold,
+            min(0.0, log_p / math.log(10.0)),
+            best > threshold,
+            tuple(axis for axis, (peak, _) in peaks.items() if peak > threshold),
             {"axis": best_axis, "frequency_hz": best_frequency},
         )
 

@@ -1,9 +1,11 @@
 """Detectors of slow deterministic effects: a warm-up transient, a temperature-driven bias, bias steps.
 
-Each is a GLS regression statistic (:mod:`carousel_theory.closed_loop.linear_statistics`) referred to
-Student's t with the Satterthwaite degrees of freedom of the fitted noise variances, Bonferroni over
-its scan and the axes. The warm-up and temperature statistics are computed jointly with the stochastic
-term that could absorb them: the noise model is refitted on the residual without the regressor, with
+Each is a GLS regression statistic (:mod:`carousel_theory.closed_loop.linear_statistics`), exactly
+Gaussian under the model given the noise variances, referred to the normal distribution at an upper
+confidence bound of its variance with the bound's non-coverage added to the p-value (Berger & Boos 1994,
+:func:`~carousel_theory.closed_loop.detection.bounded_two_sided`), Bonferroni over its scan and the axes.
+The warm-up and temperature statistics are computed jointly with the stochastic term that could absorb
+them: the noise model is refitted on the residual without the regressor, with
 a 1/f term for the warm-up (a transient and 1/f noise share the low frequencies) and with the random walk
 for the temperature (a ramp and a random walk share them), so the weaker effect is not hidden by the
 inflated stochastic term fitted with it still in the data.
@@ -19,13 +21,15 @@ import numpy as np
 
 from carousel_theory.closed_loop.detection import (
     Detection,
-    log10_two_sided_t,
+    bounded_standard_deviation,
+    bounded_threshold,
+    bounded_two_sided,
     threshold_two_sided,
-    threshold_two_sided_t,
     untestable,
 )
 from carousel_theory.closed_loop.linear_statistics import (
     COMPETING_TERM_LEVEL,
+    RegressorTest,
     gls_block,
     gls_difference_solve,
     gls_weights,
@@ -33,7 +37,11 @@ from carousel_theory.closed_loop.linear_statistics import (
     regressor_test,
     step_scan,
 )
-from carousel_theory.closed_loop.residual_model import ModelTerms, statistic_variance_dof
+from carousel_theory.closed_loop.residual_model import (
+    ModelTerms,
+    StatisticVariance,
+    statistic_variance_error,
+)
 from carousel_theory.closed_loop.view import FittedEffect, ResidualView
 
 __all__ = ["StepsDetector", "TemperatureDetector", "WarmupDetector"]
@@ -44,8 +52,16 @@ class _AxisResult:
     axis: str
     z: float
     log10_p: float
-    dof: float
     details: dict[str, float]
+
+
+def _bounded(axis: str, result: RegressorTest, tests: int, alpha: float, details: dict) -> _AxisResult:
+    """The axis's result from a full :func:`regressor_test` (z and p at the variance's upper bound)."""
+    if result.spread is None:
+        return _AxisResult(axis, 0.0, 0.0, details)
+    spread = result.spread
+    z, log10_p = bounded_two_sided(result.projection, spread.variance, spread.standard_error, tests, alpha)
+    return _AxisResult(axis, z, log10_p, {**details, "variance_relative_error": spread.relative_error})
 
 
 def _best(results: list[_AxisResult], alpha: float) -> tuple[_AxisResult, tuple[str, ...]]:
@@ -65,7 +81,7 @@ class WarmupDetector:
         low = max(span / 500.0, 5.0 / view.sample_rate)
         return np.geomspace(low, span / 4.0, self.grid_size)
 
-    def _axis(self, view: ResidualView, axis: str, tests: int) -> _AxisResult:
+    def _axis(self, view: ResidualView, axis: str, tests: int, alpha: float) -> _AxisResult:
         relative = view.time - view.time[0]
         noise = ranking_noise(view, axis)
         ranked = max(
@@ -80,21 +96,18 @@ class WarmupDetector:
         details = {
             "time_constant_s": ranked[1],
             "amplitude": result.amplitude,
-            "degrees_of_freedom": result.dof,
             "competing_flicker_p": result.competing_p,
         }
-        return _AxisResult(
-            axis, result.z, log10_two_sided_t(result.z, tests, result.dof), result.dof, details
-        )
+        return _bounded(axis, result, tests, alpha, details)
 
     def detect(self, view: ResidualView, alpha: float) -> Detection:
         tests = self.grid_size * len(view.axes)
-        best, axes = _best([self._axis(view, axis, tests) for axis in view.axes], alpha)
+        best, axes = _best([self._axis(view, axis, tests, alpha) for axis in view.axes], alpha)
         return Detection(
             self.name,
             abs(best.z),
-            "max abs z of an exponential transient (Student t)",
-            threshold_two_sided_t(alpha, tests, best.dof),
+            "max abs z of an exponential transient (variance at its upper bound)",
+            bounded_threshold(alpha, tests),
             best.log10_p,
             bool(axes),
             axes,
@@ -133,7 +146,7 @@ class TemperatureDetector:
 
     name = "temperature"
     stochastic = False
-    statistic_name = "abs z of the temperature regression (Student t)"
+    statistic_name = "abs z of the temperature regression (variance at its upper bound)"
 
     def detect(self, view: ResidualView, alpha: float) -> Detection:
         tests = len(view.axes)
@@ -146,9 +159,8 @@ class TemperatureDetector:
         results = []
         for axis in view.axes:
             result = regressor_test(view, axis, view.temperature, refit_terms=view.spec.terms)
-            found = {"coefficient_rad_s_per_degC": result.amplitude, "degrees_of_freedom": result.dof}
-            log10_p = log10_two_sided_t(result.z, tests, result.dof)
-            results.append(_AxisResult(axis, result.z, log10_p, result.dof, found))
+            found = {"coefficient_rad_s_per_degC": result.amplitude}
+            results.append(_bounded(axis, result, tests, alpha, found))
         best, axes = _best(results, alpha)
         details: dict[str, Any] = {
             "axis": best.axis,
@@ -159,7 +171,7 @@ class TemperatureDetector:
             self.name,
             abs(best.z),
             self.statistic_name,
-            threshold_two_sided_t(alpha, tests, best.dof),
+            bounded_threshold(alpha, tests),
             best.log10_p,
             bool(axes),
             axes,
@@ -181,10 +193,13 @@ class TemperatureDetector:
 
 @dataclass(frozen=True)
 class _Scan:
-    z: np.ndarray
-    sd: float
+    """u_j, the GLS statistic of a step after block j; the variance of a step's statistic with its error;
+    the information of a step; and the standard deviation at the variance's upper bound."""
+
+    statistics: np.ndarray
+    spread: StatisticVariance
     information: float
-    dof: float
+    sd: float
 
 
 class StepsDetector:
@@ -194,14 +209,14 @@ class StepsDetector:
     stochastic = False
     maximum_steps = 5
 
-    def _scan(self, view: ResidualView, axis: str) -> _Scan:
-        """z of a step after every block under the fit (no refit: a refit without the largest increment
-        of the random walk lowers σ_q² enough to make the scan's maximum anticonservative); the
-        Satterthwaite degrees of freedom carry the uncertainty of the fitted σ_q²."""
+    def _scan(self, view: ResidualView, axis: str, alpha: float) -> _Scan:
+        """u of a step after every block under the fit (no refit: a refit without the largest increment
+        of the random walk lowers σ_q² enough to make the scan's maximum anticonservative); the variance
+        of a step in the middle and its standard error carry the uncertainty of the fitted σ_q²."""
         scan = step_scan(view, axis)
-        variance, dof = statistic_variance_dof(view.fits[axis].noise, scan.middle_weights)
-        sd = math.sqrt(max(variance, 1e-300))
-        return _Scan(scan.statistics / sd, sd, scan.information, dof)
+        spread = statistic_variance_error(view.fits[axis].noise, scan.middle_weights)
+        sd = bounded_standard_deviation(spread.variance, spread.standard_error, alpha)
+        return _Scan(scan.statistics, spread, scan.information, sd)
 
     def _tests(self, view: ResidualView) -> int:
         return (len(view.time) // gls_block(view) - 1) * len(view.axes)
@@ -210,18 +225,23 @@ class StepsDetector:
         n, tests = len(view.time), self._tests(view)
         results = []
         for axis in view.axes:
-            scan = self._scan(view, axis)
-            index = int(np.argmax(np.abs(scan.z)))
-            z = float(scan.z[index])
+            scan = self._scan(view, axis, alpha)
+            index = int(np.argmax(np.abs(scan.statistics)))
+            u = float(scan.statistics[index])
+            z, log10_p = bounded_two_sided(u, scan.spread.variance, scan.spread.standard_error, tests, alpha)
             at = min((index + 1) * gls_block(view), n - 1)
-            details = {"time_s": float(view.time[at]), "height": z * scan.sd / scan.information}
-            results.append(_AxisResult(axis, z, log10_two_sided_t(z, tests, scan.dof), scan.dof, details))
+            details = {
+                "time_s": float(view.time[at]),
+                "height": u / scan.information,
+                "variance_relative_error": scan.spread.relative_error,
+            }
+            results.append(_AxisResult(axis, z, log10_p, details))
         best, axes = _best(results, alpha)
         return Detection(
             self.name,
             abs(best.z),
-            "max abs z of a bias step (GLS, Student t)",
-            threshold_two_sided_t(alpha, tests, best.dof),
+            "max abs z of a bias step (GLS, variance at its upper bound)",
+            bounded_threshold(alpha, tests),
             best.log10_p,
             bool(axes),
             axes,
@@ -230,7 +250,7 @@ class StepsDetector:
 
     def _jumps(self, view: ResidualView, axis: str, threshold: float, scan: _Scan) -> tuple[np.ndarray, list]:
         n, block = len(view.time), gls_block(view)
-        statistic = scan.z * scan.sd  # u_t
+        statistic = scan.statistics  # u_t
         total, jumps = np.zeros(n), []
         for _ in range(self.maximum_steps):
             index = int(np.argmax(np.abs(statistic)))
@@ -251,8 +271,8 @@ class StepsDetector:
         """Each jump at the maximum |z|, its height by GLS, removed from the scan; up to 5 jumps."""
         signals, fitted = {}, {}
         for axis in view.axes:
-            scan = self._scan(view, axis)
-            threshold = threshold_two_sided_t(alpha, self._tests(view), scan.dof)
+            scan = self._scan(view, axis, alpha)
+            threshold = bounded_threshold(alpha, self._tests(view))
             signals[axis], jumps = self._jumps(view, axis, threshold, scan)
             fitted[axis] = {"jumps": jumps}
         return FittedEffect(self.name, fitted, signals=signals)
