@@ -122,12 +122,18 @@ class LagModel:
         if self.memo is None:
             return self._evaluate(x)
         firsts, lasts, offsets, values = self.memo
-        run = np.maximum(np.searchsorted(firsts, x, side="right") - 1, 0)
-        found = (x >= firsts[run]) & (x <= lasts[run]) & (x == np.rint(x))
         result = np.empty(x.shape)
-        result[found] = values[(offsets[run] + (x - firsts[run]))[found].astype(np.int64)]
+        integral = x == np.rint(x)
+        points = x[integral]
+        run = np.maximum(np.searchsorted(firsts, points, side="right") - 1, 0)
+        found = (points >= firsts[run]) & (points <= lasts[run])
+        looked_up = np.empty(points.shape)
+        looked_up[found] = values[(offsets[run] + (points - firsts[run]))[found].astype(np.int64)]
         if not np.all(found):
-            result[~found] = self._evaluate(x[~found])
+            looked_up[~found] = self._evaluate(points[~found])
+        result[integral] = looked_up
+        if not np.all(integral):
+            result[~integral] = self._evaluate(x[~integral])
         return result
 
     def _evaluate(self, x: np.ndarray) -> np.ndarray:
