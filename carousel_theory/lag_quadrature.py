@@ -36,6 +36,11 @@ Far tail (distance from the support ≥ ``FAR`` times its width)
     bound through Σ w N e (2|c| + e). Pairs whose support is at most ``_DIRECT_WIDTH`` lags wide take c
     elsewhere from Σ_u W(u) γ_z(δ + u) directly (at integer lags, and outside the support at any lag).
 
+Many pairs (:func:`counted_square_sums`, all the τ pairs of one covariance): the integer arguments q − δ
+of H at the pairs' exact lags are merged into runs of consecutive integers and H is evaluated once on
+them (octave pairs share about thirty in thirty-one of these arguments); each pair then looks them up. H
+is evaluated element by element, so every sum and bound is bit for bit the one of the pair alone.
+
 Rounding is not in the bound: where the support is wider, the nine-term sum of H loses about (m_j/m_i)²
 ulps; the tests hold the whole to the bound plus 1e-11 relative.
 """
