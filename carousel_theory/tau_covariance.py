@@ -59,7 +59,7 @@ import numpy as np
 import sympy as sp
 
 from carousel_theory import symbols
-from carousel_theory.lag_quadrature import LagModel, counted_square_sum, ramp_positions
+from carousel_theory.lag_quadrature import LagModel, counted_square_sum, counted_square_sums, ramp_positions
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
 
 __all__ = [
@@ -361,21 +361,31 @@ def _engine(
     return _LongMemory(model, sizes, length, every_lag=estimator == "overlapping")
 
 
+def _pair_sums(
+    model: NoiseModel, sizes: np.ndarray, terms: np.ndarray, length: int, estimator: str, pairs: list
+) -> list[tuple[float, float]]:
+    """(Σ N c², error bound) of each (i, j) in ``pairs``; the lag quadrature takes them all at once."""
+    engine = _engine(model, sizes, length, estimator)
+    arguments = [(int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])) for i, j in pairs]
+    if isinstance(engine, LagModel):
+        return counted_square_sums(engine, arguments)
+    return [_pair_sum(model, engine, *pair, estimator) for pair in arguments]
+
+
 def _covariance_matrix(
     model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
 ) -> tuple[np.ndarray, np.ndarray]:
     """(Σ N c² / scale, error bound / scale) for every pair of non-decreasing ``sizes``."""
     terms = _terms_count(sizes, length, estimator)
-    engine = _engine(model, sizes, length, estimator)
     count = len(sizes)
+    pairs = [(i, j) for j in range(count) for i in range(j + 1)]
     covariance, bound = np.empty((count, count)), np.zeros((count, count))
-    for j in range(count):
-        for i in range(j + 1):
-            m_i, m_j, K_i, K_j = int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])
-            total, tail = _pair_sum(model, engine, m_i, m_j, K_i, K_j, estimator)
-            scale = 2.0 * float(m_i) ** 2 * float(m_j) ** 2 * K_i * K_j
-            covariance[i, j] = covariance[j, i] = total / scale
-            bound[i, j] = bound[j, i] = tail / scale
+    for (i, j), (total, tail) in zip(
+        pairs, _pair_sums(model, sizes, terms, length, estimator, pairs), strict=True
+    ):
+        scale = 2.0 * float(sizes[i]) ** 2 * float(sizes[j]) ** 2 * int(terms[i]) * int(terms[j])
+        covariance[i, j] = covariance[j, i] = total / scale
+        bound[i, j] = bound[j, i] = tail / scale
     return covariance, bound
 
 
@@ -414,8 +424,11 @@ def allan_estimate_variance(
     """Var σ̂²(m) at each m (the diagonal of :func:`allan_estimate_covariance`, without the other pairs)."""
     sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
     terms = _terms_count(sizes, int(length), estimator)
-    engine = _engine(model, np.sort(sizes), int(length), estimator)
+    order = np.argsort(sizes, kind="stable")
+    diagonal = [(k, k) for k in range(len(sizes))]
+    sums = _pair_sums(model, sizes[order], terms[order], int(length), estimator, diagonal)
     result = np.empty(len(sizes))
-    for i, (m, K) in enumerate(zip(sizes.tolist(), terms.tolist(), strict=True)):
-        result[i] = _pair_sum(model, engine, m, m, K, K, estimator)[0] / (2.0 * float(m) ** 4 * K * K)
+    for i, (total, _) in zip(order.tolist(), sums, strict=True):
+        m, K = int(sizes[i]), int(terms[i])
+        result[i] = total / (2.0 * float(m) ** 4 * K * K)
     return result
