@@ -187,6 +187,21 @@ def test_float64_against_direct_convolution_at_N_10_thousand():
     assert averaged[0] == pytest.approx(np.sum(direct_averaged[:N] ** 2), rel=1e-12)
 
 
+@pytest.mark.parametrize("n", [1, 2, 3, 7, 33, 100])
+def test_flicker_weighted_sum_variance_equals_exact_gamma_sum(n):
+    """The FFT 1/f variance of Σ w_t x_t (one zero-padded buffer for both transforms) against
+    Σ_i (Σ_{t≥i} w_t ψ_{t−i})² in Fractions, ψ from the Gamma form, for integer weights of both signs."""
+    d = Fraction(1, 2)
+    weights = [int(w) for w in np.random.default_rng(n).integers(-9, 10, size=n)]
+    psi = psi_from_gamma(d, n)
+    exact = sum(
+        (sum((Fraction(weights[t]) * psi[t - i] for t in range(i, n)), Fraction(0)) ** 2 for i in range(n)),
+        Fraction(0),
+    )
+    got = weighted_sum_variance(np.array(weights, dtype=float), "flicker", d=0.5)
+    assert got == pytest.approx(float(exact), rel=1e-12, abs=1e-12)
+
+
 def test_all_bins_at_high_precision_equal_single_bins():
     for method, single in (
         ("averaged", flicker_averaged_bin_variance),

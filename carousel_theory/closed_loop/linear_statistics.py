@@ -61,9 +61,14 @@ def _block_means(view: ResidualView, values: np.ndarray) -> np.ndarray:
 
 
 def _expand(view: ResidualView, block_weights: np.ndarray) -> np.ndarray:
+    """Per-sample weights: each block's weight / block on its samples, 0 on the incomplete last block
+    (written into one record-length array)."""
     block = gls_block(view)
-    expanded = np.repeat(block_weights / block, block)
-    return np.concatenate((expanded, np.zeros(len(view.time) - len(expanded))))
+    expanded = np.zeros(len(view.time), dtype=np.float64)
+    expanded[: len(block_weights) * block].reshape(len(block_weights), block)[:] = (block_weights / block)[
+        :, np.newaxis
+    ]
+    return expanded
 
 
 def _bands(view: ResidualView, noise: FittedNoise) -> np.ndarray:
@@ -228,9 +233,12 @@ def regressor_test(
         return RegressorTest(float(np.dot(weights, view.residuals[axis])) / math.sqrt(variance), amplitude)
     competing_p = 1.0
     if refit_terms is not None:
-        signal = amplitude * (regressor - regressor.mean())
+        del weights  # made anew under the refitted noise; one record-length array less meanwhile
+        signal = regressor - regressor.mean()
+        signal *= amplitude
         terms, competing_p = _competing_terms(view, axis, signal, refit_terms)
         refitted = refit(view, axis, signal, terms)
+        del signal  # not held through the variance below, the peak of the joint refit
         noise = bounded_noise(noise, refitted, keep_flicker_floor=not terms.flicker)
         weights = gls_weights(view, axis, regressor, noise)
     spread = statistic_variance_error(noise, weights)

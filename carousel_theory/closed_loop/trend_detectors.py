@@ -69,6 +69,13 @@ def _best(results: list[_AxisResult], alpha: float) -> tuple[_AxisResult, tuple[
     return min(results, key=lambda r: r.log10_p), significant
 
 
+def _exponential(view: ResidualView, time_constant: float) -> np.ndarray:
+    """e^{−(t − t₀)/τ_c} at the view's sample times, formed in one record-length array."""
+    regressor = np.subtract(view.time, view.time[0], dtype=np.float64)
+    np.divide(regressor, -time_constant, out=regressor)
+    return np.exp(regressor, out=regressor)
+
+
 class WarmupDetector:
     """max over time constants τ_c of |z| of the GLS amplitude of e^{−t/τ_c}, jointly with a 1/f term."""
 
@@ -82,17 +89,16 @@ class WarmupDetector:
         return np.geomspace(low, span / 4.0, self.grid_size)
 
     def _axis(self, view: ResidualView, axis: str, tests: int, alpha: float) -> _AxisResult:
-        relative = view.time - view.time[0]
         noise = ranking_noise(view, axis)
         ranked = max(
             (
-                (regressor_test(view, axis, np.exp(-relative / tc), quick=True, ranking=noise).z, float(tc))
+                (regressor_test(view, axis, _exponential(view, tc), quick=True, ranking=noise).z, float(tc))
                 for tc in self._grid(view)
             ),
             key=lambda pair: abs(pair[0]),
         )
         joint = ModelTerms(view.spec.terms.ar_order, flicker=True)
-        result = regressor_test(view, axis, np.exp(-relative / ranked[1]), refit_terms=joint)
+        result = regressor_test(view, axis, _exponential(view, ranked[1]), refit_terms=joint)
         details = {
             "time_constant_s": ranked[1],
             "amplitude": result.amplitude,
@@ -117,7 +123,6 @@ class WarmupDetector:
     def fit(self, view: ResidualView, detection: Detection, alpha: float) -> FittedEffect:
         """The time constant maximising the GLS fit (the detector's own criterion) on a fine grid around
         the detected one; the amplitude by GLS."""
-        relative = view.time - view.time[0]
         grid = self._grid(view)
         centre = float(detection.details.get("time_constant_s") or grid[0])
         fine = np.geomspace(max(centre / 4.0, grid[0] / 2.0), min(centre * 4.0, grid[-1] * 2.0), 13)
@@ -125,15 +130,17 @@ class WarmupDetector:
         for axis in view.axes:
             best = (-1.0, centre, 0.0)
             for time_constant in fine:
-                regressor = np.exp(-relative / time_constant)
+                regressor = _exponential(view, time_constant)
                 weights = gls_weights(view, axis, regressor)
                 information = float(np.dot(weights, regressor))
                 projection = float(np.dot(weights, view.residuals[axis]))
                 if information > 0 and projection**2 / information > best[0]:
                     best = (projection**2 / information, float(time_constant), projection / information)
             _, time_constant, amplitude = best
-            curve = amplitude * np.exp(-relative / time_constant)
-            signals[axis] = curve - curve.mean()
+            curve = _exponential(view, time_constant)
+            curve *= amplitude
+            curve -= curve.mean()
+            signals[axis] = curve
             fitted[axis] = {"amplitude": amplitude, "time_constant_s": time_constant}
         # Detected jointly with a 1/f term: the two enter the model together.
         joint = float(detection.details.get("competing_flicker_p", 1.0)) < COMPETING_TERM_LEVEL
