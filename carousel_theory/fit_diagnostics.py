@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from carousel_theory.fitting import FitResult
+from carousel_theory.fitting import COMPONENT_OF_PARAMETER, FitResult
 from carousel_theory.units import to_deg_per_sqrt_hour
 
 __all__ = [
@@ -59,7 +59,7 @@ def rejection_notice(fit: FitResult) -> FitNotice | None:
     """The ``model_rejected`` notice when the fit's p-value is below :data:`REJECTION_LEVEL`, else None."""
     if fit.degrees_of_freedom <= 0 or not fit.p_value < REJECTION_LEVEL:
         return None
-    components = {name.removesuffix("_variance") for name in fit.parameters}
+    components = fit.components
     tries = []
     if float(fit.allan.tau[fit.used][0]) < 1.0:
         tries.append("a short-τ cut-off above the sensor's internal filter (--tau-min 1)")
@@ -111,7 +111,7 @@ def bound_notices(fit: FitResult) -> list[FitNotice]:
     """A ``term_at_bound`` notice for each driving variance held at zero."""
     notices = []
     for parameter in fit.at_bound:
-        term = "quantization" if parameter == "quantization_squared" else parameter.removesuffix("_variance")
+        term = COMPONENT_OF_PARAMETER.get(parameter, parameter)
         notices.append(
             FitNotice(
                 "term_at_bound",

@@ -62,6 +62,7 @@ from carousel_theory.tau_covariance import allan_estimate_covariance
 
 __all__ = [
     "COMPONENTS",
+    "COMPONENT_OF_PARAMETER",
     "ConsistencyTest",
     "FitOptions",
     "FitResult",
@@ -86,6 +87,8 @@ _PARAMETER = {
     "quantization": "quantization_squared",
     "ar": "ar_variance",
 }
+#: The component each driving parameter belongs to (the inverse of ``_PARAMETER``).
+COMPONENT_OF_PARAMETER = {parameter: component for component, parameter in _PARAMETER.items()}
 
 
 @dataclass(frozen=True)
@@ -137,6 +140,11 @@ class FitResult:
     at_bound: tuple[str, ...]
     length: int
     tau_covariance: np.ndarray | None = None
+
+    @property
+    def components(self) -> tuple[str, ...]:
+        """The fitted components (names of :data:`COMPONENTS`), in the order of ``parameters``."""
+        return tuple(COMPONENT_OF_PARAMETER[p] for p in self.parameters if p in COMPONENT_OF_PARAMETER)
 
     @property
     def p_value(self) -> float:

@@ -18,7 +18,7 @@ from carousel_theory.fitting import FitResult
 from carousel_theory.noise_parameters import NoiseParameter, Quantity, noise_parameters
 from carousel_theory.units import display_unit
 
-__all__ = ["FIT_NULL_REASONS", "allan_record", "fit_as_json", "fit_lines", "fitted_components"]
+__all__ = ["FIT_NULL_REASONS", "allan_record", "fit_as_json", "fit_lines"]
 
 #: Why a standard error is null in ``fit --json``: a term held at zero has none (see ``at_bound``).
 FIT_NULL_REASONS = {
@@ -156,22 +156,12 @@ def _paper_lines(fit: FitResult) -> list[str]:
     ]
 
 
-def fitted_components(fit: FitResult) -> tuple[str, ...]:
-    """The components of a fit, from its parameter names (``white_variance`` → ``white``)."""
-    names = {"quantization_squared": "quantization"}
-    return tuple(
-        names.get(p, p.removesuffix("_variance"))
-        for p in fit.parameters
-        if p.endswith(("_variance", "_squared"))
-    )
-
-
 def fit_lines(name: str, fit: FitResult, output: OutputUnits) -> list[str]:
     """The printed block of one column: the IEEE Std 952 parameters in conventional units beside SI, Table
     III's variances, the bias and the data's minimum Allan deviation in ``output``; every figure with its
     unit."""
     lines = [
-        f"  {name}: model {'+'.join(fitted_components(fit))}; {fit.method}; χ² = {fit.chi_square:.3g} on "
+        f"  {name}: model {'+'.join(fit.components)}; {fit.method}; χ² = {fit.chi_square:.3g} on "
         f"{fit.degrees_of_freedom} degrees of freedom",
         f"    {'IEEE Std 952 parameter':44s} {'conventional units':28s} SI",
     ]
