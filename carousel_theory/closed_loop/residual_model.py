@@ -403,8 +403,8 @@ def noise_growth(
     before: ResidualFit, after: ResidualFit, z: float = 2.0, *, new_flicker: bool = False
 ) -> list[str]:
     """The τ at which the fitted model's Allan variance grew by more than ``z`` of its standard errors
-    (:func:`model_curve_error` of ``before``) and by more than :data:`MATERIAL_GROWTH`, from ``before`` to ``after``
-    (``new_flicker``: the 1/f term is new in ``after``; its own share is not counted as growth).
+    (:func:`model_curve_error` of ``before``) and by more than :data:`MATERIAL_GROWTH`, from ``before``
+    to ``after`` (``new_flicker``: the 1/f term is new in ``after``; its own share is not counted as growth).
 
     Removing a deterministic effect s that is really there lowers the expected Allan variance at every τ
     by the effect's own, E σ̂_A²(e + s) = E σ̂_A²(e) + σ_A²(s) for s independent of e; what a wrongly
