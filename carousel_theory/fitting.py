@@ -219,20 +219,25 @@ class FitResult:
         )
         return result
 
+    def _bounded_error(self, name: str) -> float:
+        """The standard error of ``name``, NaN when it is held at zero (``at_bound``: it has none)."""
+        return math.nan if name in self.at_bound else float(self.standard_errors[name])
+
     def paper_units(self) -> dict[str, tuple[float, float]]:
         """(value, standard error) in TIM 2014 Table III's terms: σ_WN² (τ = 1 s) in (rad/s)², σ_q² in
-        (rad/s)²/s, bias instability in rad/s."""
+        (rad/s)²/s, bias instability in rad/s; a term held at zero has no standard error (NaN), as in
+        :meth:`field_units`."""
         rate = float(self.model.sample_rate)
         result: dict[str, tuple[float, float]] = {}
         if "white_variance" in self.standard_errors:
             result["white_variance_at_1s"] = (
                 self.model.white_variance_at_one_second(),
-                self.standard_errors["white_variance"] / rate,
+                self._bounded_error("white_variance") / rate,
             )
         if "rrw_variance" in self.standard_errors:
             result["rrw_variance_per_s"] = (
                 self.model.rrw_variance_per_second(),
-                self.standard_errors["rrw_variance"] * rate,
+                self._bounded_error("rrw_variance") * rate,
             )
         minimum, _ = self.model.minimum_allan_deviation(self.length)
         result["bias_instability"] = (

@@ -193,6 +193,8 @@ def test_issue13_fit_term_at_bound_is_reported_everywhere(filtered_npz, capsys, 
     out = capsys.readouterr().out
     (arw_line,) = [line for line in out.splitlines() if line.strip().startswith("angle random walk N")]
     assert "0 °/√h (held at zero: no standard error)" in arw_line
+    (table_line,) = [line for line in out.splitlines() if line.strip().startswith("σ_WN² (τ = 1 s)")]
+    assert "held at zero: no standard error" in table_line  # Table III's σ_WN² has no error either
     assert "white_variance is held at zero" in _words(out) and "nan" not in out.lower()
     text = report.read_text(encoding="utf-8")
     assert "white_variance is held at zero" in text
@@ -202,3 +204,4 @@ def test_issue13_fit_term_at_bound_is_reported_everywhere(filtered_npz, capsys, 
     kinds = [notice["kind"] for notice in column["notices"]]
     assert "term_at_bound" in kinds and "model_rejected" in kinds
     assert column["at_bound"][0] == "white_variance"
+    assert column["paper_units"]["white_variance_at_1s"]["standard_error"] is None
