@@ -258,6 +258,7 @@ def _consistency_section(files: list[tuple[Any, dict[str, FitResult]]], axes: li
         "| parameter | unit | " + " | ".join(axes) + " |",
         "|---|---|" + "---|" * len(axes),
     ]
+    left_out: list[str] = []
     for key, label, unit, kind in [(*row, "paper") for row in PAPER_ROWS] + [
         (*row, "field") for row in FIELD_ROWS
     ]:
@@ -269,7 +270,18 @@ def _consistency_section(files: list[tuple[Any, dict[str, FitResult]]], axes: li
             cells.append(_consistency(values) if len(values) == len(present) >= 2 else "—")
         if any(cell != "—" for cell in cells):
             lines.append(_row(label, unit, cells))
-    return [*lines, "", *_missing_axes_note(files, axes)]
+        else:
+            left_out.append(label)
+    note = (
+        [
+            f"Left out: {', '.join(left_out)}: on every axis some run has no standard error for it "
+            "(its term held at zero there).",
+            "",
+        ]
+        if left_out
+        else []
+    )
+    return [*lines, "", *note, *_missing_axes_note(files, axes)]
 
 
 def _missing_axes_note(files: list[tuple[Any, dict[str, FitResult]]], axes: list[str]) -> list[str]:
