@@ -304,6 +304,20 @@ def _maximise_order_and_ratio(
     return d, ratio_at(d)
 
 
+def _check_ratio_bounds(ratio_bounds: tuple[float, float]) -> tuple[float, float]:
+    """(log low, log high) of the ratio bounds, 0 < low < high."""
+    low, high = _check_bounds("ratio_bounds", ratio_bounds, 0.0, math.inf)
+    if low <= 0:
+        raise ValueError(f"ratio_bounds={ratio_bounds!r}: must satisfy 0 < low < high")
+    return math.log(low), math.log(high)
+
+
+def _first_step(data: np.ndarray) -> float:
+    """The first bracket's half-width in log ρ for K sections of n samples (``_FIRST_STEP_SCALE``)."""
+    step = _FIRST_STEP_SCALE / math.sqrt(data.size - data.shape[0])
+    return min(max(step, _FIRST_STEP_LIMITS[0]), _FIRST_STEP_LIMITS[1])
+
+
 def estimate_noise_variances(
     sections: np.ndarray,
     d: float = 0.5,
@@ -316,19 +330,15 @@ def estimate_noise_variances(
     """REML estimates of σ_w² and σ_v² (and of d when ``estimate_d``) from independent sections
     (rows), each with its own unknown constant bias.
 
-    ``d`` is the fixed order (not used when ``estimate_d``); log ρ is searched over
-    ``ratio_bounds`` (a ratio at a bound means one component is not identified) by Brent's method
-    started from a bracket around the Whittle estimate of :func:`_whittle_log_ratio`, to
-    ± 2(√ε |log ρ| + RATIO_TOLERANCE/3); d over ``d_bounds`` (Brent's method on the profile in d of
-    the profile in log ρ). Progress, one tick
-    per likelihood evaluation, is shown on a terminal (``show_progress=None``) or as asked.
+    ``d`` is the fixed order (not used when ``estimate_d``); log ρ is searched over ``ratio_bounds``
+    (a ratio at a bound means one component is not identified) by Brent's method from a bracket
+    around the Whittle start of :func:`_whittle_log_ratio`, to ± 2(√ε |log ρ| + RATIO_TOLERANCE/3);
+    d over ``d_bounds`` (Brent's method on the profile in d of the profile in log ρ). Progress, one
+    tick per likelihood evaluation, is shown on a terminal (``show_progress=None``) or as asked.
     """
     data = _check_sections(sections)
     d = float(check_fractional_order("d", d))
-    low, high = _check_bounds("ratio_bounds", ratio_bounds, 0.0, math.inf)
-    if low <= 0:
-        raise ValueError(f"ratio_bounds={ratio_bounds!r}: must satisfy 0 < low < high")
-    log_bounds = (math.log(low), math.log(high))
+    log_bounds = _check_ratio_bounds(ratio_bounds)
     d_limits = _check_bounds("d_bounds", d_bounds, 0.0, 1.0) if estimate_d else (d, d)
     if estimate_d and not (d_limits[0] > 0.0 and d_limits[1] < 1.0):
         raise ValueError(f"d_bounds={d_bounds!r}: must lie strictly inside (0, 1)")
@@ -348,10 +358,7 @@ def estimate_noise_variances(
     def starting_point(order: float) -> float:
         return _whittle_log_ratio(data, order, log_bounds)
 
-    first_step = min(
-        max(_FIRST_STEP_SCALE / math.sqrt(data.size - data.shape[0]), _FIRST_STEP_LIMITS[0]),
-        _FIRST_STEP_LIMITS[1],
-    )
+    first_step = _first_step(data)
     try:
         if estimate_d:
             d, log_ratio = _maximise_order_and_ratio(
