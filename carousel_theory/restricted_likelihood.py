@@ -24,9 +24,10 @@ downhill by parabolic extrapolation when needed, bracket the maximum; Brent's me
 from that bracket with parabolic steps, and stops by Brent's rule, the one of the former bounded
 search over the whole of ``ratio_bounds`` (x within 2(√ε |x| + RATIO_TOLERANCE/3) of the
 maximiser). On the ADIS16405 x axis at n = 10⁵ this takes 8 passes instead of 13
-(``benchmarks/bench_reml_search.py``). An analytic gradient was not used: tr(A⁻¹) and A⁻¹y are not
-by-products of the forward recursion, and a tangent pass through it would cost about as much as
-the function values it saves in a one-dimensional search.
+(``benchmarks/bench_reml_search.py``). No analytic gradient is used: tr(A⁻¹) and A⁻¹y are not
+by-products of the forward recursion, and carrying derivatives through every rotation would at
+least double the work of a pass (an estimate from its operation count, not a measurement), more
+than the two or three passes a gradient could save in a one-dimensional search.
 """
 
 from __future__ import annotations
