@@ -160,6 +160,8 @@ def _whittle_log_ratio(sections: np.ndarray, d: float, log_bounds: tuple[float, 
     difference = 4.0 * np.sin(omega / 2.0) ** 2  # |1 − e^{−iω}|²
     flicker = np.tile(spectral_density("flicker", omega, d) * difference, sections.shape[0])
     white = np.tile(spectral_density("white", omega) * difference, sections.shape[0])
+    if not np.any(periodogram > 0.0):  # straight lines: no start is better than another
+        return 0.5 * (log_bounds[0] + log_bounds[1])
 
     def negative_log_likelihood(log_ratio: float) -> float:
         spectrum = flicker + math.exp(log_ratio) * white
