@@ -13,6 +13,10 @@ runs only that child) are printed, with its CPU time (user + system, which a loa
 distorts less than the wall time) and the time the same process needs only to start the command
 (``predict --help``: interpreter and imports), the baseline every size pays.
 
+With ``--baseline DIR`` (a checkout or ``git archive`` export of an earlier commit) every command
+also runs with ``PYTHONPATH=DIR``, in the same run, and the CPU-time ratio baseline/current is
+printed: on a shared machine only a same-run comparison means anything.
+
 Without ``--recording`` a seeded synthetic recording (1/f of order ½ plus white noise, 100 Hz, as
 long as the largest calibration + horizon) is written to a temporary directory. The measured
 ADIS16405 runs (10⁶ samples each) also serve: the horizon may run past the end of the recording.
@@ -22,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -41,11 +46,28 @@ print(json.dumps({"seconds": elapsed, "cpu_seconds": usage.ru_utime + usage.ru_s
 """
 
 
-def _measure(command: list[str]) -> dict:
+def _measure(command: list[str], code: Path | None = None) -> dict:
+    """Run ``command`` in the measuring process; with ``code``, from that directory and with it on
+    PYTHONPATH (``python -m`` puts the working directory first on the path)."""
+    environment = dict(os.environ)
+    if code is not None:
+        environment["PYTHONPATH"] = str(code)
     completed = subprocess.run(
-        [sys.executable, "-c", _MEASURE, *command], capture_output=True, text=True, check=True
+        [sys.executable, "-c", _MEASURE, *command],
+        capture_output=True,
+        text=True,
+        check=True,
+        env=environment,
+        cwd=code,
     )
     return json.loads(completed.stdout)
+
+
+def _line(label: str, result: dict) -> str:
+    return (
+        f"  {label:24s} {result['seconds']:8.2f} s wall   {result['cpu_seconds']:8.2f} s CPU   "
+        f"peak RSS {result['peak_bytes'] / 2**20:7.0f} MiB"
+    )
 
 
 def _synthetic_recording(directory: Path, length: int) -> Path:
@@ -67,43 +89,36 @@ def _parse_sizes(texts: list[str]) -> list[tuple[int, int]]:
     return sizes
 
 
+def _run_size(base: list[str], recording: Path, n: int, h: int, output: Path, baseline: Path | None) -> None:
+    command = [*base, str(recording.resolve()), "--calibration", str(n), "--horizon", str(h)]
+    command += ["--output", str(output.resolve())]
+    result = _measure(command)
+    if result["code"] != 0:
+        print(f"  {n} + {h}: failed (exit {result['code']}): {result['stderr']}")
+        return
+    print(_line(f"{n} + {h}", result))
+    print("    " + result["stdout"].splitlines()[0])
+    if baseline is not None:
+        before = _measure(command, baseline.resolve())
+        print(_line(f"{n} + {h} (baseline)", before))
+        print(f"    CPU time baseline/current: {before['cpu_seconds'] / result['cpu_seconds']:.2f}×")
+        print("    " + before["stdout"].splitlines()[0])
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--recording", type=Path, help="a recording (default: a synthetic one)")
     parser.add_argument("--sizes", nargs="+", default=["6000:60000", "100000:1000000"])
+    parser.add_argument("--baseline", type=Path, help="also run the code in this directory (PYTHONPATH)")
     args = parser.parse_args()
     sizes = _parse_sizes(args.sizes)
     with tempfile.TemporaryDirectory() as temporary:
         recording = args.recording or _synthetic_recording(Path(temporary), max(n + h for n, h in sizes))
         base = [sys.executable, "-m", "carousel_theory", "predict"]
-        startup = _measure([*base, "--help"])
         print(f"recording {recording}")
-        print(
-            f"  start-up only (predict --help): {startup['seconds']:7.2f} s wall, "
-            f"{startup['cpu_seconds']:7.2f} s CPU, "
-            f"peak RSS {startup['peak_bytes'] / 2**20:7.0f} MiB"
-        )
+        print(_line("start-up (predict --help)", _measure([*base, "--help"])))
         for n, h in sizes:
-            output = Path(temporary) / f"forecast_{n}_{h}.csv"
-            command = [
-                *base,
-                str(recording),
-                "--calibration",
-                str(n),
-                "--horizon",
-                str(h),
-                "--output",
-                str(output),
-            ]
-            result = _measure(command)
-            if result["code"] != 0:
-                print(f"  {n} + {h}: failed (exit {result['code']}): {result['stderr']}")
-                continue
-            print(
-                f"  {n:>7d} + {h:<8d} {result['seconds']:8.2f} s wall   {result['cpu_seconds']:8.2f} s CPU   "
-                f"peak RSS {result['peak_bytes'] / 2**20:7.0f} MiB"
-            )
-            print("    " + result["stdout"].splitlines()[0])
+            _run_size(base, recording, n, h, Path(temporary) / f"forecast_{n}_{h}.csv", args.baseline)
 
 
 if __name__ == "__main__":

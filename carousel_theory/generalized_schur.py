@@ -184,7 +184,10 @@ def _leaf(first: np.ndarray, second: np.ndarray, residual: np.ndarray, whitened:
     column_one[1] = 1.0  # entry (B, column 1) at degree 0
     factor_transposed = np.zeros((m, m))  # row k: Cholesky column k on rows k … m−1
     rotated = np.zeros((m, 2 * m))  # row k: M_k Θ_k e₁, degrees 0 … k, rows interleaved
-    rotate = blas.drot
+    # Flat views: the rows are filled by BLAS copies with offsets, one call per row instead of the
+    # two views and the copy of a NumPy slice assignment (the loop's cost is per call, not per flop).
+    flat_factor, flat_rotated = factor_transposed.reshape(-1), rotated.reshape(-1)
+    rotate, copy = blas.drot, blas.dcopy
     for k in range(m):  # the hot loop: the rotation of _rotation, written out
         alpha, beta = first.item(0), second.item(k)
         delta = math.hypot(alpha, beta)
@@ -193,8 +196,8 @@ def _leaf(first: np.ndarray, second: np.ndarray, residual: np.ndarray, whitened:
         c, s = alpha / delta, beta / delta
         rotate(first, second, c, s, m - k, 0, 1, k, 1, 1, 1)
         rotate(column_zero, column_one, c, s, 2 * (k + 1), 2 * (m - k), 1, 0, 1, 1, 1)
-        factor_transposed[k, k:] = first[: m - k]
-        rotated[k, : 2 * (k + 1)] = column_zero[2 * (m - k) :]
+        copy(first, flat_factor, m - k, 0, 1, k * (m + 1), 1)  # factor_transposed[k, k:] = first[: m − k]
+        copy(column_zero, flat_rotated, 2 * (k + 1), 2 * (m - k), 1, 2 * m * k, 1)  # rotated[k, : 2(k + 1)]
     log_determinant = 2.0 * float(np.log(np.diagonal(factor_transposed)).sum())
     # Lower factor = factor_transposedᵀ, Fortran-contiguous: BLAS trsm directly (scipy's
     # solve_triangular takes a path that a multithreaded OpenBLAS makes 20× slower at this size).

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -193,3 +194,32 @@ def test_table1_on_a_directory_of_recordings_writes_and_checks_markdown(tmp_path
     text = report.read_text()
     assert "| mean RSSE |" in text and "--average 2" in text
     assert main([*arguments, "--markdown", str(report), "--check"]) == 0
+
+
+def _csv_values(path):
+    with path.open(newline="") as handle:
+        rows = list(csv.reader(handle))
+    return rows[0], rows[1:]
+
+
+def test_the_csv_writers_with_and_without_pyarrow_give_the_same_numbers_exactly(
+    recording, tmp_path, monkeypatch
+):
+    pytest.importorskip("pyarrow")
+    path, _ = recording
+    arguments = ["predict", str(path), "--calibration", "300", "--horizon", "500"]
+    arguments += ["--driving-variance", "1e-8", "--white-variance", "9e-8"]
+    with_arrow = tmp_path / "arrow.csv"
+    assert main([*arguments, "--output", str(with_arrow)]) == 0
+    monkeypatch.setitem(sys.modules, "pyarrow", None)  # import pyarrow now raises ImportError
+    as_text = tmp_path / "text.csv"
+    assert main([*arguments, "--output", str(as_text)]) == 0
+    header, arrow_rows = _csv_values(with_arrow)
+    assert (header, len(arrow_rows)) == (_csv_values(as_text)[0], 500)
+    text_rows = _csv_values(as_text)[1]
+    assert [row[0] for row in arrow_rows] == [str(index) for index in range(300, 800)]
+    for arrow_row, text_row in zip(arrow_rows, text_rows, strict=True):
+        # Both are exact round trips of the same doubles; empty where not measured.
+        assert [cell == "" for cell in arrow_row] == [cell == "" for cell in text_row]
+        assert [float(cell) for cell in arrow_row if cell] == [float(cell) for cell in text_row if cell]
+    assert text_rows[299][-1] != "" and text_rows[300][-1] == ""  # the recording ends at sample 599

@@ -8,7 +8,11 @@ import pytest
 
 from carousel_theory.prediction import BiasModel, simulate_sections
 from carousel_theory.processes import fractional_coefficients
-from carousel_theory.restricted_likelihood import estimate_noise_variances, restricted_log_likelihood
+from carousel_theory.restricted_likelihood import (
+    RATIO_TOLERANCE,
+    estimate_noise_variances,
+    restricted_log_likelihood,
+)
 
 
 def _dense_restricted_log_likelihood(sections, d, driving, white):
@@ -90,3 +94,94 @@ INVALID = [
 def test_invalid_arguments_are_refused(call, error):
     with pytest.raises(error):
         call()
+
+
+def _dense_profile(sections, d, log_ratio):
+    """(ℓ at σ̂_w², σ̂_w²) with σ_w² profiled out, written with a dense Cholesky factor of A = ΨΨᵀ + ρI:
+    Q = Σ_k y_kᵀ P_A y_k, σ̂_w² = Q/(K(n − 1)), ℓ = −½[K(n − 1)(log σ̂_w² + 1) + K log|A| + K log 1ᵀA⁻¹1]."""
+    from scipy.linalg import cho_factor, cho_solve
+
+    count, n = sections.shape
+    psi = fractional_coefficients(d, n)
+    index = np.arange(n)
+    lag = index[:, None] - index[None, :]
+    mixing = np.where(lag >= 0, psi[np.clip(lag, 0, None)], 0.0)
+    factor = cho_factor(mixing @ mixing.T + np.exp(log_ratio) * np.eye(n), lower=True)
+    log_determinant = 2.0 * np.log(np.diagonal(factor[0])).sum()
+    ones = np.ones(n)
+    inverse_ones = cho_solve(factor, ones)
+    total = ones @ inverse_ones
+    quadratic = (
+        np.einsum("ki,ik->", sections, cho_solve(factor, sections.T))
+        - ((sections @ inverse_ones) ** 2).sum() / total
+    )
+    scale = quadratic / (count * (n - 1))
+    return -0.5 * (count * (n - 1) * (np.log(scale) + 1.0) + count * (log_determinant + np.log(total))), scale
+
+
+def _dense_maximiser(sections, d, log_bounds):
+    from scipy.optimize import minimize_scalar
+
+    result = minimize_scalar(
+        lambda value: -_dense_profile(sections, d, value)[0],
+        bounds=log_bounds,
+        method="bounded",
+        options={"xatol": 1e-8},
+    )
+    return float(result.x)
+
+
+def _search_tolerance(log_ratio):
+    """Brent's stopping rule: the maximiser lies within 2(√ε |x| + RATIO_TOLERANCE/3) of x."""
+    return 2.0 * (np.sqrt(np.finfo(np.float64).eps) * abs(log_ratio) + RATIO_TOLERANCE / 3.0)
+
+
+@pytest.mark.parametrize(
+    ("count", "n", "d", "driving", "white", "seed"),
+    [
+        (1, 400, 0.5, 1.0, 30.0, 1),  # one long section, white dominant: ρ far from the Whittle start
+        (1, 300, 0.5, 1.0, 0.2, 2),
+        (8, 120, 0.35, 2.0, 5.0, 3),
+        (30, 60, 0.7, 1.0, 1.0, 4),
+    ],
+)
+def test_the_bracketed_search_finds_the_dense_maximiser_within_its_tolerance(
+    count, n, d, driving, white, seed
+):
+    rng = np.random.default_rng(seed)
+    model = BiasModel(d=d, driving_variance=driving, white_variance=white)
+    sections = simulate_sections(count, n, model, rng=rng, bias=2.0)
+    bounds = (1e-4, 1e4)
+    estimate = estimate_noise_variances(sections, d, bounds)
+    got = np.log(estimate.white_variance / estimate.driving_variance)
+    expected = _dense_maximiser(sections, d, (np.log(bounds[0]), np.log(bounds[1])))
+    assert abs(got - expected) <= _search_tolerance(expected) + 1e-8
+    _, scale = _dense_profile(sections, d, got)
+    assert estimate.driving_variance == pytest.approx(scale, rel=1e-9)
+    best = _dense_restricted_log_likelihood(sections, d, estimate.driving_variance, estimate.white_variance)
+    assert estimate.log_likelihood == pytest.approx(best, rel=1e-10)
+
+
+def test_a_maximum_at_the_bound_is_found_by_the_search_over_all_bounds():
+    # White-dominated data with an upper bound below the maximiser: the profile rises up to the bound.
+    rng = np.random.default_rng(21)
+    model = BiasModel(d=0.5, driving_variance=1.0, white_variance=100.0)
+    sections = simulate_sections(1, 300, model, rng=rng, bias=0.0)
+    bounds = (1e-3, 3.0)
+    estimate = estimate_noise_variances(sections, 0.5, bounds)
+    got = np.log(estimate.white_variance / estimate.driving_variance)
+    expected = _dense_maximiser(sections, 0.5, (np.log(bounds[0]), np.log(bounds[1])))
+    assert expected > np.log(bounds[1]) - 1e-3
+    assert abs(got - expected) <= _search_tolerance(expected) + 1e-8
+
+
+def test_narrow_ratio_bounds_are_searched_whole():
+    rng = np.random.default_rng(22)
+    model = BiasModel(d=0.5, driving_variance=1.0, white_variance=3.0)
+    sections = simulate_sections(1, 200, model, rng=rng, bias=0.0)
+    bounds = (2.5, 3.5)  # narrower than the first bracket: the bounded search over the whole interval
+    estimate = estimate_noise_variances(sections, 0.5, bounds)
+    got = np.log(estimate.white_variance / estimate.driving_variance)
+    expected = _dense_maximiser(sections, 0.5, (np.log(bounds[0]), np.log(bounds[1])))
+    assert np.log(bounds[0]) <= got <= np.log(bounds[1])
+    assert abs(got - expected) <= _search_tolerance(expected) + 1e-8

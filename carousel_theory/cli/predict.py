@@ -261,7 +261,7 @@ def _angle(integrated_rad_per_s: float, sample_interval: float, unit: str) -> fl
 #: Why ``measured`` holds nulls in the forecast JSON.
 _NOT_RECORDED = "null where the horizon runs past the end of the recording: not measured"
 
-#: Rows of forecast CSV formatted at a time.
+#: Rows of forecast CSV formatted at a time by the text writer.
 _CSV_CHUNK = 65_536
 
 
@@ -274,9 +274,47 @@ def _column_values(values: np.ndarray) -> list:
 
 
 def _column_text(key: str, values: np.ndarray) -> list[str]:
-    """CSV cells: the index as an integer, floats by repr (exact round trip), empty when not finite."""
-    as_text = (lambda value: str(int(value))) if key == "index" else repr
-    return ["" if value is None else as_text(value) for value in _column_values(values)]
+    """CSV cells: the index as an integer, floats by repr (shortest exact round trip), empty when not
+    finite; ``map`` over the C ``repr`` (no Python call per cell)."""
+    if key == "index":
+        return list(map(str, np.asarray(values, dtype=np.int64).tolist()))
+    cells = list(map(repr, np.asarray(values, dtype=np.float64).tolist()))
+    for index in np.flatnonzero(~np.isfinite(values)).tolist():
+        cells[index] = ""
+    return cells
+
+
+def _write_csv_text(handle, rows: dict[str, np.ndarray]) -> None:
+    """The forecast table as CSV text, in chunks (the text of 10⁶ rows is never all in memory)."""
+    length = len(next(iter(rows.values())))
+    for start in range(0, length, _CSV_CHUNK):
+        columns = [_column_text(key, values[start : start + _CSV_CHUNK]) for key, values in rows.items()]
+        handle.write("".join(map("{}\n".format, map(",".join, zip(*columns, strict=True)))))
+
+
+def _write_csv_arrow(handle, rows: dict[str, np.ndarray]) -> bool:
+    """The forecast table through pyarrow's C++ CSV writer (the ``data`` extra), about 6× faster than
+    :func:`_write_csv_text` at 10⁶ rows; False when pyarrow is not installed.
+
+    Floats are written in their shortest exact round-trip form (as ``repr``, though spelled
+    ``0.00001`` where ``repr`` gives ``1e-05``); the index as integers; a value that is not finite as
+    an empty cell."""
+    try:
+        import pyarrow as arrow
+        import pyarrow.csv as arrow_csv
+    except ImportError:
+        return False
+    columns = {
+        key: arrow.array(np.asarray(values, dtype=np.int64))
+        if key == "index"
+        else arrow.array(np.asarray(values, dtype=np.float64), mask=~np.isfinite(values))
+        for key, values in rows.items()
+    }
+    handle.flush()
+    arrow_csv.write_csv(
+        arrow.table(columns), handle.buffer, write_options=arrow_csv.WriteOptions(include_header=False)
+    )
+    return True
 
 
 def _write_forecast(path: Path, rows: dict, model, axis: str, source: str, output: OutputUnits) -> None:
@@ -303,14 +341,10 @@ def _write_forecast(path: Path, rows: dict, model, axis: str, source: str, outpu
             payload["columns"]["measured_null_reason"] = _NOT_RECORDED
         write_text_atomic(path, strict_json(json_document("predict", payload)))
     elif suffix == ".csv":
-        length = len(next(iter(rows.values())))
         with atomic_output(path) as temporary, temporary.open("w", encoding="utf-8", newline="") as handle:
             handle.write(",".join(rows) + "\n")
-            for start in range(0, length, _CSV_CHUNK):  # in chunks: the text of 10⁶ rows never all in memory
-                columns = [
-                    _column_text(key, values[start : start + _CSV_CHUNK]) for key, values in rows.items()
-                ]
-                handle.write("".join(",".join(cells) + "\n" for cells in zip(*columns, strict=True)))
+            if not _write_csv_arrow(handle, rows):
+                _write_csv_text(handle, rows)
     else:
         raise ValueError(f"--output={str(path)!r}: must end in .csv or .json")
 
