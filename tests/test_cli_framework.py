@@ -29,8 +29,19 @@ def test_missing_matplotlib_is_a_clean_error(monkeypatch, capsys):
         raise ModuleNotFoundError("No module named 'matplotlib'", name="matplotlib")
 
     parser = build_parser()
-    monkeypatch.setattr(cli, "build_parser", lambda: parser)
+    monkeypatch.setattr(cli, "build_parser", lambda command=None: parser)
     check_parser = next(a for a in parser._actions if a.dest == "command").choices["check"]
     check_parser.set_defaults(handler=handler)
     assert main(["check"]) == 2
     assert "carousel-theory[plots]" in capsys.readouterr().err
+
+
+def test_a_command_builds_only_its_own_parser():
+    # A run of one command registers that command alone; no command (or an unknown one) registers all.
+    only = build_parser("predict")
+    choices = next(a for a in only._actions if a.dest == "command").choices
+    assert list(choices) == ["predict"]
+    every = next(a for a in build_parser()._actions if a.dest == "command").choices
+    assert {"allan", "check", "fit", "loop", "predict"} <= set(every)
+    unknown = next(a for a in build_parser("nosuch")._actions if a.dest == "command").choices
+    assert set(unknown) == set(every)

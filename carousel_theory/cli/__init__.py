@@ -23,7 +23,13 @@ from carousel_theory.cli._errors import report_error, silence_closed_pipe
 __all__ = ["build_parser", "main"]
 
 
-def build_parser() -> argparse.ArgumentParser:
+def _command_names() -> list[str]:
+    return sorted(m.name for m in pkgutil.iter_modules(__path__) if not m.name.startswith("_"))
+
+
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The parser of every sub-command, or only of ``command`` when it names one (a run imports only the
+    modules its command needs, so it starts without the others' dependencies)."""
     parser = argparse.ArgumentParser(
         prog="carousel-theory",
         description="Exact variance propagation of gyro error processes under averaging and carouseling.",
@@ -33,9 +39,9 @@ def build_parser() -> argparse.ArgumentParser:
         "--debug", action="store_true", help="show the full traceback of an unforeseen error (any position)"
     )
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for module_info in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
-        if not module_info.name.startswith("_"):
-            importlib.import_module(f"{__name__}.{module_info.name}").register(subparsers)
+    names = _command_names()
+    for name in [command] if command in names else names:
+        importlib.import_module(f"{__name__}.{name}").register(subparsers)
     return parser
 
 
@@ -43,7 +49,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     arguments = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in arguments
     arguments = [argument for argument in arguments if argument != "--debug"]
-    args = build_parser().parse_args(arguments)
+    command = next((argument for argument in arguments if not argument.startswith("-")), None)
+    args = build_parser(command).parse_args(arguments)
     try:
         return int(args.handler(args))
     except BrokenPipeError:
