@@ -162,19 +162,56 @@ def _near_half_ratio(j: np.ndarray, d: float) -> np.ndarray:
     return (j * j - 0.25) * special.exprel(epsilon * slope) * slope
 
 
+_s = sp.Symbol("s", positive=True)
+#: e_k(s) of log Γ(j + (1 + s)/2)/Γ(j + (1 − s)/2) = s log j + Σ_k e_k(s) j^{−2k} (module text), k = 1 … 8.
+LOG_RATIO_COEFFICIENTS: tuple[sp.Expr, ...] = tuple(
+    sp.expand(-2 * sp.bernoulli(2 * k + 1, (1 + _s) / 2) / (2 * k * (2 * k + 1))) for k in range(1, 9)
+)
+#: (e_k(s) − e_k(2))/(s − 2), polynomials in s: the series of Λ in the module text.
+LOG_RATIO_SLOPES: tuple[sp.Expr, ...] = tuple(
+    sp.quo(sp.expand(e - e.subs(_s, 2)), _s - 2, _s) for e in LOG_RATIO_COEFFICIENTS
+)
+_log_ratio_coefficients = sp.lambdify(_s, list(LOG_RATIO_COEFFICIENTS), "math")
+_log_ratio_slopes = sp.lambdify(_s, list(LOG_RATIO_SLOPES), "math")
+#: From this j on, F(j) = Γ(j + 1 + d)/Γ(j − d) comes from its even asymptotic series (module text).
+ASYMPTOTIC_FROM = 16.0
+
+
+def _even_series(coefficients: list[float], j: np.ndarray) -> np.ndarray:
+    """Σ_k c_k j^{−2k} by Horner's rule in j^{−2}."""
+    inverse_square = 1.0 / (j * j)
+    total = np.zeros_like(j)
+    for coefficient in reversed(coefficients):
+        total = (total + coefficient) * inverse_square
+    return total
+
+
+def _large_argument_ratio(j: np.ndarray, d: float, near_half: bool) -> np.ndarray:
+    """F(j)/(d − ½), or [F(j) − (j² − ¼)]/(d − ½) when ``near_half``, for j ≥ ASYMPTOTIC_FROM (module
+    text): exp(s log j + Σ e_k j^{−2k}), and (j² − ¼)·2Λ·exprel(2(d − ½)Λ) with
+    Λ = log j + Σ (e_k(s) − e_k(2))/(s − 2) j^{−2k}."""
+    s = 1.0 + 2.0 * d
+    logarithm = np.log(j)
+    if near_half:
+        slope = logarithm + _even_series(_log_ratio_slopes(s), j)
+        return (j * j - 0.25) * 2.0 * slope * special.exprel(2.0 * (d - 0.5) * slope)
+    return np.exp(s * logarithm + _even_series(_log_ratio_coefficients(s), j)) / (d - 0.5)
+
+
 def flicker_fourth_sum(x: Any, d: float) -> np.ndarray:
     """:data:`FLICKER_FOURTH_SUM` at integers ``x`` (unit σ_w²), up to a quadratic in x that the Allan and
     cross-covariance weights remove (the module text)."""
     j = np.abs(np.asarray(x, dtype=np.float64) + 2.0)  # H is even about x = −2
     d = float(d)
-    if abs(d - 0.5) <= _NEAR_HALF:
-        scale = _normalisation_numeric(d) / _regular_denominator_numeric(d)
-        return scale * _near_half_ratio(j, d)
-    return (
-        _normalisation_numeric(d)
-        * _rising_numeric(j - 2.0, d)
-        / (_regular_denominator_numeric(d) * (d - 0.5))
-    )
+    near_half = abs(d - 0.5) <= _NEAR_HALF
+    ratio = np.empty(j.shape)
+    large = j >= ASYMPTOTIC_FROM
+    if np.any(large):
+        ratio[large] = _large_argument_ratio(j[large], d, near_half)
+    if not np.all(large):
+        small = j[~large]
+        ratio[~large] = _near_half_ratio(small, d) if near_half else _rising_numeric(small - 2.0, d) / (d - 0.5)
+    return (_normalisation_numeric(d) / _regular_denominator_numeric(d)) * ratio
 
 
 def finite_fourth_sum(gamma: np.ndarray, x: Any, *, total: float | None = None) -> np.ndarray:

@@ -267,7 +267,7 @@ def _plan(
     small = [(f, n) for f, n in blocks if n <= 2 * GAUSS_POINTS]
     exact += [np.arange(f, f + n) for f, n in small]
     large = tuple((f, n) for f, n in blocks if n > 2 * GAUSS_POINTS)
-    lags = np.concatenate(exact) if exact else np.zeros(0, dtype=np.int64)
+    lags = np.unique(np.concatenate(exact)) if exact else np.zeros(0, dtype=np.int64)
     lags.setflags(write=False)
     return lags, large
 
@@ -305,17 +305,62 @@ def _factorial_moments(m_i: int, m_j: int, scale: float) -> np.ndarray:
     return result
 
 
-def _newton_series(pair: _Pair, lag_model: LagModel, nearest: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+@dataclass(frozen=True)
+class _Pairs:
+    """Many pairs as rows (:func:`counted_square_sums`): ramp positions and weights (rows padded at the
+    first position with weight 0), and m_i, m_j, K_i, K_j as floats. Every evaluation takes an ``owner``
+    array (the row of each lag), so all the pairs of one covariance are evaluated by the same few array
+    operations, element by element: a pair's values do not depend on the others in the batch."""
+
+    positions: np.ndarray
+    weights: np.ndarray
+    m_i: np.ndarray
+    m_j: np.ndarray
+    K_i: np.ndarray
+    K_j: np.ndarray
+
+    @classmethod
+    def of(cls, pairs: Sequence[_Pair]) -> _Pairs:
+        columns = 9  # at most nine ramps; a fixed width keeps each row's sum in one order
+        positions, weights = np.empty((len(pairs), columns)), np.zeros((len(pairs), columns))
+        for row, pair in enumerate(pairs):
+            used = len(pair.positions)
+            positions[row, :used], positions[row, used:] = pair.positions, pair.positions[0]
+            weights[row, :used] = pair.weights
+        sizes = np.array([(p.m_i, p.m_j, p.K_i, p.K_j) for p in pairs], dtype=np.float64).reshape(-1, 4)
+        return cls(positions, weights, *sizes.T)
+
+    def count(self, owner: np.ndarray, delta: np.ndarray) -> np.ndarray:
+        """N_ij(δ), linear between the kinks 0 and K_j − K_i (also at non-integer δ inside a piece)."""
+        return np.minimum(self.K_i[owner] - 1, self.K_j[owner] - 1 - delta) - np.maximum(0, -delta) + 1
+
+    def nearest(self, owner: np.ndarray, lags: np.ndarray) -> np.ndarray:
+        """x₀, the argument of γ_z nearest to zero over the support of W at each lag (≤ 0 inside it)."""
+        return np.maximum(lags - 2 * self.m_i[owner] + 2, -lags - 2 * self.m_j[owner] + 2)
+
+    def width(self) -> np.ndarray:
+        """The support's width 2m_i + 2m_j − 4 (at least 1), the scale of the far-tail series."""
+        return np.maximum(2 * self.m_i + 2 * self.m_j - 4, 1)
+
+
+def _newton_series(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, nearest: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """(c, bound on its error) from Σ_{r≤R} ν_r Δ^r γ_z(x₀) at the nearest arguments x₀ (far tail)."""
-    d, scale = lag_model.flicker_d, float(max(2 * pair.m_i + 2 * pair.m_j - 4, 1))
-    moments = _factorial_moments(pair.m_i, pair.m_j, scale)
+    d, width = lag_model.flicker_d, pairs.width()
+    rows = np.unique(owner)
+    table = np.zeros((len(pairs.m_i), _NEWTON_TERMS + 2))
+    for row in rows.tolist():
+        table[row] = _factorial_moments(int(pairs.m_i[row]), int(pairs.m_j[row]), float(width[row]))
+    moments, scale = table[owner], width[owner]
     base = flicker_normalisation(d) / rising_factorial(nearest + d - 1.0, 3.0 - 2.0 * d)
     total, term = np.zeros_like(nearest), base.copy()
     for r in range(_NEWTON_TERMS + 1):
-        total += moments[r] * term
+        total += moments[:, r] * term
         term = term * (2.0 * d - 3.0 - r) * scale / (nearest + 2.0 - d + r)
     order = _NEWTON_TERMS + 1
-    remainder = moments[order] * np.abs(_increment_difference(nearest - order, d, order)) * scale**order
+    difference = np.abs(_increment_difference(nearest - order, d, order))
+    remainder = moments[:, order] * difference * scale**order
     return lag_model.flicker_variance * total, lag_model.flicker_variance * remainder
 
 
@@ -336,60 +381,67 @@ def _block_nodes(
     return (firsts[:, None] + offsets).ravel(), weights.ravel(), owner, log_norms
 
 
-def _far_arguments(pair: _Pair, lags: np.ndarray) -> np.ndarray:
-    """x₀, the argument of γ_z nearest to zero over the support of W at each lag (≤ 0 inside it)."""
-    return np.maximum(lags - 2 * pair.m_i + 2, -lags - 2 * pair.m_j + 2)
-
-
-def _derivative_bounds(pair: _Pair, lag_model: LagModel, blocks: np.ndarray) -> np.ndarray:
-    """B ≥ sup|c^{(p)}|/p! on each block (first, last): the branch bound, and in the far tail the
-    bound through W ≥ 0 and the monotone derivative of γ_z, whichever is smaller (module text)."""
+def _derivative_bounds(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """B ≥ sup|c^{(p)}|/p! on each block (first, last) of the pair ``owner``: the branch bound, and in the
+    far tail the bound through W ≥ 0 and the monotone derivative of γ_z, whichever is smaller."""
     if not lag_model.flicker_variance:
-        return np.zeros(len(blocks))
-    d, breakpoints = lag_model.flicker_d, pair.positions + 2.0
-    distance = np.minimum(
-        np.abs(blocks[:, :1] - breakpoints[None, :]), np.abs(blocks[:, 1:] - breakpoints[None, :])
-    )
-    bound = _branch_bound(distance, d) @ np.abs(pair.weights)
-    nearest = np.minimum(_far_arguments(pair, blocks[:, 0]), _far_arguments(pair, blocks[:, 1]))
+        return np.zeros(len(ends))
+    d, breakpoints = lag_model.flicker_d, pairs.positions[owner] + 2.0
+    distance = np.minimum(np.abs(ends[:, :1] - breakpoints), np.abs(ends[:, 1:] - breakpoints))
+    bound = np.einsum("ij,ij->i", _branch_bound(distance, d), np.abs(pairs.weights[owner]))
+    nearest = np.minimum(pairs.nearest(owner, ends[:, 0]), pairs.nearest(owner, ends[:, 1]))
     tail = nearest > GAUSS_POINTS + 2
     if np.any(tail):
-        mass = float(pair.m_i) ** 2 * float(pair.m_j) ** 2
+        mass = pairs.m_i[owner[tail]] ** 2 * pairs.m_j[owner[tail]] ** 2
         far = mass * np.abs(_increment_difference(nearest[tail] - GAUSS_POINTS, d, GAUSS_POINTS))
         bound[tail] = np.minimum(bound[tail], far / math.factorial(GAUSS_POINTS))
     return lag_model.flicker_variance * bound
 
 
 def _partition(
-    pair: _Pair, lag_model: LagModel, lags: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
-    """(x₀, far, direct or None, near): how c is taken at each lag (:func:`_values`)."""
-    nearest = _far_arguments(pair, lags)
-    width = max(2 * pair.m_i + 2 * pair.m_j - 4, 1)
-    far = (nearest >= FAR * width) & (nearest >= max(lag_model.reach + 8, _NEWTON_TERMS + 4))
-    far &= bool(lag_model.flicker_variance)
-    near = ~far
-    # Integer lags, or any lag outside the support (where every δ + u keeps one sign and γ_z is analytic).
-    direct = near & ((lags == np.rint(lags)) | (nearest >= 1)) if width <= _DIRECT_WIDTH else None
-    direct = direct if lag_model.flicker_variance else None
-    if direct is not None:
-        near &= ~direct
-    return nearest, far, direct, near
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(x₀, far, direct, near): how c is taken at each lag (:func:`_batch_values`)."""
+    nearest, width = pairs.nearest(owner, lags), pairs.width()[owner]
+    flicker = bool(lag_model.flicker_variance)
+    far = (nearest >= FAR * width) & (nearest >= max(lag_model.reach + 8, _NEWTON_TERMS + 4)) & flicker
+    # Narrow pairs at integer lags, or at any lag outside the support (where every δ + u keeps one sign
+    # and γ_z is analytic).
+    direct = ~far & (width <= _DIRECT_WIDTH) & ((lags == np.rint(lags)) | (nearest >= 1)) & flicker
+    return nearest, far, direct, ~far & ~direct
+
+
+def _nine_term_sum(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray) -> np.ndarray:
+    """c_ij(δ) = Σ_q w_q H(q − δ) at ``lags`` of the pairs ``owner``."""
+    values = lag_model.fourth_sum(pairs.positions[owner] - lags[:, None])
+    return np.einsum("ij,ij->i", values, pairs.weights[owner])
+
+
+def _batch_values(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """(c, bound on its error) at ``lags`` of the pairs ``owner``: the Newton series in the far tail;
+    elsewhere the nine-term sum of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u)."""
+    nearest, far, direct, near = _partition(pairs, lag_model, owner, lags)
+    values, errors = np.empty(len(lags)), np.zeros(len(lags))
+    if np.any(direct):
+        finite = replace(lag_model, flicker_variance=0.0, memo=None)
+        chosen_owner, chosen = owner[direct], lags[direct]
+        flicker = np.empty(len(chosen))
+        for row in np.unique(chosen_owner).tolist():
+            mine = chosen_owner == row
+            flicker[mine] = _direct_flicker(int(pairs.m_i[row]), int(pairs.m_j[row]), lag_model, chosen[mine])
+        values[direct] = flicker + _nine_term_sum(pairs, finite, chosen_owner, chosen)
+    if np.any(near):
+        values[near] = _nine_term_sum(pairs, lag_model, owner[near], lags[near])
+    if np.any(far):
+        values[far], errors[far] = _newton_series(pairs, lag_model, owner[far], nearest[far])
+    return values, errors
 
 
 def _values(pair: _Pair, lag_model: LagModel, lags: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(c, bound on its error) at ``lags``: the Newton series in the far tail; elsewhere the nine-term sum
-    of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u) (no cancellation)."""
-    nearest, far, direct, near = _partition(pair, lag_model, lags)
-    values, errors = np.empty(len(lags)), np.zeros(len(lags))
-    if direct is not None and np.any(direct):
-        values[direct] = _direct_flicker(pair, lag_model, lags[direct])
-        finite = replace(lag_model, flicker_variance=0.0, memo=None)
-        values[direct] += pair.cross_covariance(finite, lags[direct])
-    values[near] = pair.cross_covariance(lag_model, lags[near])
-    if np.any(far):
-        values[far], errors[far] = _newton_series(pair, lag_model, nearest[far])
-    return values, errors
+    """(c, bound on its error) of one pair at ``lags`` (:func:`_batch_values` with one row)."""
+    return _batch_values(_Pairs.of([pair]), lag_model, np.zeros(len(lags), dtype=np.int64), lags)
 
 
 @functools.lru_cache(maxsize=256)
@@ -400,14 +452,25 @@ def _window(m_i: int, m_j: int) -> np.ndarray:
     return np.convolve(triangle_i[::-1], triangle_j)
 
 
-def _direct_flicker(pair: _Pair, lag_model: LagModel, lags: np.ndarray) -> np.ndarray:
+def _direct_flicker(m_i: int, m_j: int, lag_model: LagModel, lags: np.ndarray) -> np.ndarray:
     """σ_w² Σ_u W(u) γ_z(δ + u) at integer lags or outside the support, γ_z(x) = C_d/rising(|x| + d − 1,
-    3 − 2d) (even on the integers, analytic on either side of the support)."""
-    d, window = lag_model.flicker_d, _window(pair.m_i, pair.m_j)
-    offsets = np.arange(-(2 * pair.m_i - 2), 2 * pair.m_j - 1, dtype=np.float64)
-    arguments = np.abs(lags[:, None] + offsets[None, :])
-    gamma = flicker_normalisation(d) / rising_factorial(arguments + d - 1.0, 3.0 - 2.0 * d)
-    return lag_model.flicker_variance * (gamma @ window)
+    3 − 2d) (even on the integers, analytic on either side of the support). At integer lags γ_z is
+    evaluated once on the integers the lags reach and correlated with W."""
+    d, window = lag_model.flicker_d, _window(m_i, m_j)
+    normalisation, step = flicker_normalisation(d), 3.0 - 2.0 * d
+    result = np.empty(len(lags))
+    integral = lags == np.rint(lags)
+    if np.any(integral):
+        points = lags[integral]
+        first, last = int(points.min()), int(points.max())
+        arguments = np.abs(np.arange(first - 2 * m_i + 2, last + 2 * m_j - 1, dtype=np.float64))
+        gamma = normalisation / rising_factorial(arguments + d - 1.0, step)
+        result[integral] = np.correlate(gamma, window, "valid")[(points - first).astype(np.int64)]
+    if not np.all(integral):
+        offsets = np.arange(-(2 * m_i - 2), 2 * m_j - 1, dtype=np.float64)
+        arguments = np.abs(lags[~integral][:, None] + offsets[None, :])
+        result[~integral] = (normalisation / rising_factorial(arguments + d - 1.0, step)) @ window
+    return lag_model.flicker_variance * result
 
 
 def _make_pair(m_i: int, m_j: int, K_i: int, K_j: int) -> _Pair:
@@ -418,40 +481,7 @@ def _make_pair(m_i: int, m_j: int, K_i: int, K_j: int) -> _Pair:
 
 def counted_square_sum(lag_model: LagModel, m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[float, float]:
     """(Σ_δ N_ij(δ) c_ij(δ)², proved bound on its error) for the overlapping estimator (module text)."""
-    pair = _make_pair(m_i, m_j, K_i, K_j)
-    exact, blocks = _plan(m_i, m_j, K_i, K_j, lag_model.reach)
-    lags = exact.astype(np.float64)
-    values, errors = _values(pair, lag_model, lags)
-    counts = pair.count(lags)
-    total = float(np.dot(counts, values * values))
-    bound = float(np.dot(counts, errors * (2.0 * np.abs(values) + errors)))
-    if blocks:
-        nodes, weights, owner, log_norms = _block_nodes(blocks)
-        values, errors = _values(pair, lag_model, nodes)
-        weighted = weights * pair.count(nodes)
-        total += float(np.dot(weighted, values * values))
-        bound += float(np.dot(weighted, errors * (2.0 * np.abs(values) + errors)))
-        ends = np.array([(first, first + length - 1) for first, length in blocks], dtype=np.float64)
-        derivative = _derivative_bounds(pair, lag_model, ends)
-        square_sums = np.bincount(owner, weights * values * values, minlength=len(blocks))
-        largest_count = np.maximum(pair.count(ends[:, 0]), pair.count(ends[:, 1]))
-        norms = np.exp(log_norms)
-        bound += float(
-            np.sum(derivative * largest_count * (2.0 * np.sqrt(norms * square_sums) + derivative * norms))
-        )
-    return total, bound
-
-
-def _argument_runs(lag_model: LagModel, pair: _Pair, lags: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(first, last) of the runs of consecutive integers q − δ at which :func:`_values` evaluates H
-    through the nine-term sum at the integer ``lags``."""
-    near = np.unique(lags[_partition(pair, lag_model, lags)[3]]).astype(np.int64)
-    if not len(near):
-        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    breaks = np.flatnonzero(np.diff(near) != 1)
-    starts, stops = near[np.concatenate(([0], breaks + 1))], near[np.concatenate((breaks, [len(near) - 1]))]
-    positions = pair.positions.astype(np.int64)[:, None]
-    return (positions - stops[None, :]).ravel(), (positions - starts[None, :]).ravel()
+    return counted_square_sums(lag_model, [(m_i, m_j, K_i, K_j)])[0]
 
 
 def _merged_runs(firsts: np.ndarray, lasts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -463,25 +493,86 @@ def _merged_runs(firsts: np.ndarray, lasts: np.ndarray) -> tuple[np.ndarray, np.
     return firsts[starts], reach[np.concatenate((starts[1:] - 1, [len(firsts) - 1]))]
 
 
+def _with_memo(lag_model: LagModel, pairs: _Pairs, owner: np.ndarray, lags: np.ndarray) -> LagModel:
+    """``lag_model`` with H tabulated on the union of the integer arguments q − δ that the nine-term sums
+    at the (sorted within each pair) integer ``lags`` need: runs of consecutive lags give runs of
+    arguments, merged across pairs (octave pairs share most of them)."""
+    near = _partition(pairs, lag_model, owner, lags)[3]
+    owner, lags = owner[near], lags[near]
+    if not len(lags):
+        return lag_model
+    breaks = np.flatnonzero((np.diff(lags) != 1) | (np.diff(owner) != 0))
+    starts, stops = np.concatenate(([0], breaks + 1)), np.concatenate((breaks, [len(lags) - 1]))
+    positions = pairs.positions[owner[starts]]
+    first, last = _merged_runs(
+        (positions - lags[stops][:, None]).ravel(), (positions - lags[starts][:, None]).ravel()
+    )
+    lengths = (last - first + 1).astype(np.int64)
+    offsets = np.concatenate(([0], np.cumsum(lengths)[:-1]))
+    keys = np.repeat(first - offsets, lengths) + np.arange(int(lengths.sum()))
+    values = lag_model.fourth_sum(keys.astype(np.float64))
+    return replace(lag_model, memo=(first, last, offsets.astype(np.float64), values))
+
+
+def _block_layout(
+    plans: Sequence[tuple[np.ndarray, tuple[tuple[int, int], ...]]],
+) -> tuple[np.ndarray, ...]:
+    """(node lags, node weights, node's block, block's pair, block ends, log h_p) of every pair's blocks."""
+    parts: list[list[np.ndarray]] = [[] for _ in range(6)]
+    count = 0
+    for row, (_, blocks) in enumerate(plans):
+        if not blocks:
+            continue
+        nodes, weights, block, log_norms = _block_nodes(blocks)
+        ends = np.array([(first, first + length - 1) for first, length in blocks], dtype=np.float64)
+        for part, value in zip(
+            parts, (nodes, weights, block + count, np.full(len(blocks), row), ends, log_norms), strict=True
+        ):
+            part.append(value)
+        count += len(blocks)
+    if not count:
+        return ()
+    return tuple(np.concatenate(part) for part in parts)
+
+
+def _block_sums(
+    pairs: _Pairs, lag_model: LagModel, layout: tuple[np.ndarray, ...]
+) -> tuple[np.ndarray, np.ndarray]:
+    """(Σ over the Gauss blocks of N c², the blocks' error bound) of each pair (module text)."""
+    size = len(pairs.m_i)
+    if not layout:
+        return np.zeros(size), np.zeros(size)
+    nodes, weights, block, block_owner, ends, log_norms = layout
+    owner = block_owner[block]
+    values, errors = _batch_values(pairs, lag_model, owner, nodes)
+    weighted = weights * pairs.count(owner, nodes)
+    total = np.bincount(owner, weighted * (values * values), minlength=size)
+    bound = np.bincount(owner, weighted * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
+    derivative = _derivative_bounds(pairs, lag_model, block_owner, ends)
+    square_sums = np.bincount(block, weights * values * values, minlength=len(block_owner))
+    largest = np.maximum(pairs.count(block_owner, ends[:, 0]), pairs.count(block_owner, ends[:, 1]))
+    norms = np.exp(log_norms)
+    quadrature = derivative * largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
+    return total, bound + np.bincount(block_owner, quadrature, minlength=size)
+
+
 def counted_square_sums(
     lag_model: LagModel, pairs: Sequence[tuple[int, int, int, int]]
 ) -> list[tuple[float, float]]:
-    """:func:`counted_square_sum` of every (m_i, m_j, K_i, K_j) in ``pairs``, with H evaluated once on
-    the union of the integer arguments that the pairs' exact lags need (octave pairs share most of
-    them: about one in thirty is distinct), then looked up; each value is the one the pair alone gives."""
-    firsts, lasts = [np.zeros(0, dtype=np.int64)], [np.zeros(0, dtype=np.int64)]
-    for m_i, m_j, K_i, K_j in pairs:
-        exact = _plan(m_i, m_j, K_i, K_j, lag_model.reach)[0]
-        first, last = _argument_runs(lag_model, _make_pair(m_i, m_j, K_i, K_j), exact.astype(np.float64))
-        firsts.append(first)
-        lasts.append(last)
-    first, last = np.concatenate(firsts), np.concatenate(lasts)
-    if len(first):
-        starts, ends = _merged_runs(first, last)
-        lengths = ends - starts + 1
-        offsets = np.concatenate(([0], np.cumsum(lengths)[:-1]))
-        keys = np.repeat(starts - offsets, lengths) + np.arange(int(lengths.sum()))
-        values = lag_model.fourth_sum(keys.astype(np.float64))
-        memo = (starts.astype(np.float64), ends.astype(np.float64), offsets.astype(np.float64), values)
-        lag_model = replace(lag_model, memo=memo)
-    return [counted_square_sum(lag_model, *pair) for pair in pairs]
+    """:func:`counted_square_sum` of every (m_i, m_j, K_i, K_j) in ``pairs``, all evaluated together (rows of
+    :class:`_Pairs`), with H tabulated once on the union of the integer arguments the exact lags need.
+    Every operation is element by element and each pair's sum is reduced in its own order, so each
+    value is, bit for bit, the one the pair alone gives."""
+    if not pairs:
+        return []
+    batch = _Pairs.of([_make_pair(*pair) for pair in pairs])
+    plans = [_plan(*pair, lag_model.reach) for pair in pairs]
+    lags = np.concatenate([exact for exact, _ in plans]).astype(np.float64)
+    owner = np.repeat(np.arange(len(pairs)), [len(exact) for exact, _ in plans])
+    lag_model = _with_memo(lag_model, batch, owner, lags)
+    values, errors = _batch_values(batch, lag_model, owner, lags)
+    counts = batch.count(owner, lags)
+    total = np.bincount(owner, counts * (values * values), minlength=len(pairs))
+    bound = np.bincount(owner, counts * (errors * (2.0 * np.abs(values) + errors)), minlength=len(pairs))
+    block_total, block_bound = _block_sums(batch, lag_model, _block_layout(plans))
+    return list(zip((total + block_total).tolist(), (bound + block_bound).tolist(), strict=True))
