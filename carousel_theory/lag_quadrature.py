@@ -51,7 +51,7 @@ import functools
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import special
@@ -100,12 +100,6 @@ class LagModel:
     flicker_variance: float
     flicker_d: float
     reach: int
-    #: H tabulated at runs of consecutive integers (first integers, last integers, index of each run's
-    #: first value in the values, values), shared by many pairs (:func:`counted_square_sums`); H is
-    #: evaluated element by element, so a looked-up value is the value a direct call returns.
-    memo: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = field(
-        default=None, compare=False, repr=False
-    )
 
     @classmethod
     def of(cls, model: NoiseModel) -> LagModel:
@@ -123,25 +117,7 @@ class LagModel:
         return cls(gamma, total, low, table, flicker, float(model.flicker_d), reach)
 
     def fourth_sum(self, x: np.ndarray) -> np.ndarray:
-        """Σ_t θ_t H_t(x) at (integer-valued near −2) points x (looked up where :attr:`memo` holds x)."""
-        if self.memo is None:
-            return self._evaluate(x)
-        firsts, lasts, offsets, values = self.memo
-        result = np.empty(x.shape)
-        integral = x == np.rint(x)
-        points = x[integral]
-        run = np.maximum(np.searchsorted(firsts, points, side="right") - 1, 0)
-        found = (points >= firsts[run]) & (points <= lasts[run])
-        looked_up = np.empty(points.shape)
-        looked_up[found] = values[(offsets[run] + (points - firsts[run]))[found].astype(np.int64)]
-        if not np.all(found):
-            looked_up[~found] = self._evaluate(points[~found])
-        result[integral] = looked_up
-        if not np.all(integral):
-            result[~integral] = self._evaluate(x[~integral])
-        return result
-
-    def _evaluate(self, x: np.ndarray) -> np.ndarray:
+        """Σ_t θ_t H_t(x) at points x (integers within the finite terms' reach of −2), element by element."""
         result = np.empty(x.shape)
         index = np.rint(x).astype(np.int64) - self.table_low
         near = (index >= 0) & (index < len(self.table)) & (np.abs(x + 2.0) <= self.reach + 6)
@@ -171,7 +147,8 @@ def _cubic(lag_model: LagModel, x: np.ndarray) -> np.ndarray:
 # --- the pair's geometry ------------------------------------------------------------------------------
 
 
-def ramp_positions(m_i: int, m_j: int) -> list[tuple[int, int]]:
+@functools.lru_cache(maxsize=4096)
+def ramp_positions(m_i: int, m_j: int) -> tuple[tuple[int, int], ...]:
     """(q, w) with W_ij(−δ) = Σ w R₃(q − δ): q = −p_αβ, merged where positions coincide (module text of
     :mod:`carousel_theory.tau_covariance`)."""
     merged: dict[int, int] = {}
@@ -179,7 +156,7 @@ def ramp_positions(m_i: int, m_j: int) -> list[tuple[int, int]]:
         for beta, w_beta in enumerate((1, -2, 1)):
             q = -(2 - 2 * m_i + alpha * m_i + beta * m_j)
             merged[q] = merged.get(q, 0) + w_alpha * w_beta
-    return [(q, w) for q, w in sorted(merged.items()) if w]
+    return tuple((q, w) for q, w in sorted(merged.items()) if w)
 
 
 @dataclass(frozen=True)
@@ -417,15 +394,37 @@ def _nine_term_sum(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: 
     return np.einsum("ij,ij->i", values, pairs.weights[owner])
 
 
-def _batch_values(
+def _tabulated_nine_term_sum(
     pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> np.ndarray:
+    """:func:`_nine_term_sum` at integer ``lags`` sorted within each pair: runs of consecutive lags give
+    runs of arguments q − δ, merged across pairs (octave pairs share most of them); H is evaluated once
+    on their union and gathered by index (element by element, so each value is the direct one)."""
+    breaks = np.flatnonzero((np.diff(lags) != 1) | (np.diff(owner) != 0))
+    starts, stops = np.concatenate(([0], breaks + 1)), np.concatenate((breaks, [len(lags) - 1]))
+    positions = pairs.positions[owner[starts]]
+    lowest = (positions - lags[stops][:, None]).ravel()
+    first, last = _merged_runs(lowest, (positions - lags[starts][:, None]).ravel())
+    lengths = (last - first + 1).astype(np.int64)
+    offsets = np.concatenate(([0], np.cumsum(lengths)[:-1]))
+    keys = np.repeat(first - offsets, lengths) + np.arange(int(lengths.sum()))
+    values = lag_model.fourth_sum(keys.astype(np.float64))
+    run = np.searchsorted(first, lowest, side="right") - 1  # the merged run holding each argument run
+    base = (offsets[run] - first[run] + positions.ravel()).reshape(positions.shape)  # q − δ ↦ base − δ
+    index = base[np.repeat(np.arange(len(starts)), stops - starts + 1)] - lags[:, None]
+    return np.einsum("ij,ij->i", values[index.astype(np.int64)], pairs.weights[owner])
+
+
+def _batch_values(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray, *, tabulated: bool = False
 ) -> tuple[np.ndarray, np.ndarray]:
     """(c, bound on its error) at ``lags`` of the pairs ``owner``: the Newton series in the far tail;
-    elsewhere the nine-term sum of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u)."""
+    elsewhere the nine-term sum of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u). ``tabulated``:
+    the lags are integers, sorted within each pair, and H is tabulated once for all of them."""
     nearest, far, direct, near = _partition(pairs, lag_model, owner, lags)
     values, errors = np.empty(len(lags)), np.zeros(len(lags))
     if np.any(direct):
-        finite = replace(lag_model, flicker_variance=0.0, memo=None)
+        finite = replace(lag_model, flicker_variance=0.0)
         chosen_owner, chosen = owner[direct], lags[direct]
         flicker = np.empty(len(chosen))
         for row in np.unique(chosen_owner).tolist():
@@ -433,7 +432,8 @@ def _batch_values(
             flicker[mine] = _direct_flicker(int(pairs.m_i[row]), int(pairs.m_j[row]), lag_model, chosen[mine])
         values[direct] = flicker + _nine_term_sum(pairs, finite, chosen_owner, chosen)
     if np.any(near):
-        values[near] = _nine_term_sum(pairs, lag_model, owner[near], lags[near])
+        nine_term_sum = _tabulated_nine_term_sum if tabulated else _nine_term_sum
+        values[near] = nine_term_sum(pairs, lag_model, owner[near], lags[near])
     if np.any(far):
         values[far], errors[far] = _newton_series(pairs, lag_model, owner[far], nearest[far])
     return values, errors
@@ -493,27 +493,6 @@ def _merged_runs(firsts: np.ndarray, lasts: np.ndarray) -> tuple[np.ndarray, np.
     return firsts[starts], reach[np.concatenate((starts[1:] - 1, [len(firsts) - 1]))]
 
 
-def _with_memo(lag_model: LagModel, pairs: _Pairs, owner: np.ndarray, lags: np.ndarray) -> LagModel:
-    """``lag_model`` with H tabulated on the union of the integer arguments q − δ that the nine-term sums
-    at the (sorted within each pair) integer ``lags`` need: runs of consecutive lags give runs of
-    arguments, merged across pairs (octave pairs share most of them)."""
-    near = _partition(pairs, lag_model, owner, lags)[3]
-    owner, lags = owner[near], lags[near]
-    if not len(lags):
-        return lag_model
-    breaks = np.flatnonzero((np.diff(lags) != 1) | (np.diff(owner) != 0))
-    starts, stops = np.concatenate(([0], breaks + 1)), np.concatenate((breaks, [len(lags) - 1]))
-    positions = pairs.positions[owner[starts]]
-    first, last = _merged_runs(
-        (positions - lags[stops][:, None]).ravel(), (positions - lags[starts][:, None]).ravel()
-    )
-    lengths = (last - first + 1).astype(np.int64)
-    offsets = np.concatenate(([0], np.cumsum(lengths)[:-1]))
-    keys = np.repeat(first - offsets, lengths) + np.arange(int(lengths.sum()))
-    values = lag_model.fourth_sum(keys.astype(np.float64))
-    return replace(lag_model, memo=(first, last, offsets.astype(np.float64), values))
-
-
 def _block_layout(
     plans: Sequence[tuple[np.ndarray, tuple[tuple[int, int], ...]]],
 ) -> tuple[np.ndarray, ...]:
@@ -569,8 +548,7 @@ def counted_square_sums(
     plans = [_plan(*pair, lag_model.reach) for pair in pairs]
     lags = np.concatenate([exact for exact, _ in plans]).astype(np.float64)
     owner = np.repeat(np.arange(len(pairs)), [len(exact) for exact, _ in plans])
-    lag_model = _with_memo(lag_model, batch, owner, lags)
-    values, errors = _batch_values(batch, lag_model, owner, lags)
+    values, errors = _batch_values(batch, lag_model, owner, lags, tabulated=True)
     counts = batch.count(owner, lags)
     total = np.bincount(owner, counts * (values * values), minlength=len(pairs))
     bound = np.bincount(owner, counts * (errors * (2.0 * np.abs(values) + errors)), minlength=len(pairs))
