@@ -36,6 +36,7 @@ Finite γ_z (autoregressive terms, truncated where their envelope is below
 from __future__ import annotations
 
 import functools
+import math
 from typing import Any
 
 import numpy as np
@@ -268,3 +269,61 @@ def flicker_allan_variance_closed(d: float, sizes: tuple[int, ...]) -> np.ndarra
     result = allan_variance_from_fourth_sum(lambda x: flicker_fourth_sum(x, d), np.asarray(sizes))
     result.setflags(write=False)
     return result
+
+
+# --- Σ (Γ(j + d)/Γ(j))² without a pass over j ------------------------------------------------------------
+
+#: Terms j < this are summed one by one; the rest by the power series (module text).
+SQUARE_SUM_HEAD = 128
+_BERNOULLI_OVER_FACTORIAL = tuple(float(sp.bernoulli(2 * k) / sp.factorial(2 * k)) for k in range(1, 9))
+
+
+def _hurwitz_difference(power: float, first: float, count: int) -> float:
+    """Σ_{n<count} (first + n)^power = ζ(−power, first) − ζ(−power, first + count), each Hurwitz ζ(s, a)
+    from its Euler–Maclaurin series a^{1−s}/(s − 1) + a^{−s}/2 + Σ_k B_{2k}/(2k)! (s)_{2k−1} a^{−s−2k+1}
+    (first ≥ 64; eight terms). The leading pair is (b^ε − a^ε)/ε = a^ε log(b/a) exprel(ε log(b/a)),
+    ε = power + 1, so that d = ½ (ε = 0) needs no special case."""
+    last = first + count
+    logarithm = math.log(last / first)
+    epsilon = power + 1.0
+    total = first**epsilon * logarithm * float(special.exprel(epsilon * logarithm))
+    total += 0.5 * (first**power - last**power)
+    s, rising = -power, -power  # (s)_{2k−1}, rising factorial
+    for k, coefficient in enumerate(_BERNOULLI_OVER_FACTORIAL, start=1):
+        exponent = power - 2 * k + 1
+        total += coefficient * rising * (first**exponent - last**exponent)
+        rising *= (s + 2 * k - 1) * (s + 2 * k)
+    return total
+
+
+def _squared_ratio_coefficients(step: float) -> list[float]:
+    """a_k with (Γ(x + step)/Γ(x))² = Σ_k a_k w^{2 step − 2k}, w = x + (step − 1)/2: the exponential of
+    2 Σ_k e_k(step) u^k (:data:`LOG_RATIO_COEFFICIENTS`, u = w^{−2}) as a power series in u."""
+    g = [0.0] + [2.0 * float(e) for e in _log_ratio_coefficients(step)]
+    a = [1.0]
+    for n in range(1, len(g)):
+        a.append(sum(k * g[k] * a[n - k] for k in range(1, n + 1)) / n)
+    return a
+
+
+def squared_rising_factorial_sum(step: float, count: int) -> float:
+    """Σ_{j=1}^{count} (Γ(j + step)/Γ(j))², 0 < step < 1, at a cost that does not grow with ``count``.
+
+    Terms j < :data:`SQUARE_SUM_HEAD` one by one (:func:`rising_factorial`); beyond, with
+    Γ(x + step)/Γ(x) = Γ(w + (1 + σ)/2)/Γ(w + (1 − σ)/2), σ = step, w = x + (step − 1)/2, the even series of
+    the module text gives (Γ(x + step)/Γ(x))² = Σ_{k≤8} a_k w^{2 step − 2k} (first omitted term below 1e-30
+    relative at w ≥ 127), and each Σ_j w_j^p is a difference of two Hurwitz ζ values
+    (:func:`_hurwitz_difference`).
+    """
+    head = min(int(count), SQUARE_SUM_HEAD - 1)
+    values = rising_factorial(np.arange(1, head + 1, dtype=np.float64), float(step))
+    total = float(np.dot(values, values))
+    if count <= head:
+        return total
+    first = head + 1 + (float(step) - 1.0) / 2.0
+    coefficients = _squared_ratio_coefficients(float(step))
+    tail = sum(
+        a * _hurwitz_difference(2.0 * float(step) - 2.0 * k, first, int(count) - head)
+        for k, a in enumerate(coefficients)
+    )
+    return total + tail
