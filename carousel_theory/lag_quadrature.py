@@ -47,6 +47,7 @@ ulps; the tests hold the whole to the bound plus 1e-11 relative.
 
 from __future__ import annotations
 
+import bisect
 import functools
 import itertools
 import math
@@ -178,7 +179,7 @@ class _Pair:
         return values @ self.weights
 
 
-@functools.lru_cache(maxsize=64)
+@functools.lru_cache(maxsize=1024)
 def _gauss_rule(length: int, points: int) -> tuple[np.ndarray, np.ndarray, float]:
     """(offsets in [0, L − 1], weights, log h_p) of the p-point Gauss rule of the uniform measure on
     {0, …, L − 1}: Golub–Welsch on the discrete Chebyshev recurrence (module text)."""
@@ -191,15 +192,19 @@ def _gauss_rule(length: int, points: int) -> tuple[np.ndarray, np.ndarray, float
     return nodes + (length - 1) / 2.0, weights, math.log(length) + float(np.sum(np.log(beta)))
 
 
+#: Block lengths: ⌊2^{k/4}⌋, k = 0, 1, … (quarter octaves, so that a block is close to BLOCK_RATIO × its
+#: distance while the Gauss rules stay few and cached).
+_BLOCK_LENGTHS = sorted({math.floor(2.0 ** (k / 4.0)) for k in range(4 * 62)})
+
+
 def _grow(start: int, stop: int, breakpoint: int, direction: int) -> list[tuple[int, int]]:
     """Blocks (first, length) covering start … stop (direction +1 away from a breakpoint on the left,
-    −1 away from one on the right): power-of-two lengths ≤ BLOCK_RATIO × distance."""
+    −1 away from one on the right): lengths from :data:`_BLOCK_LENGTHS`, ≤ BLOCK_RATIO × distance."""
     blocks: list[tuple[int, int]] = []
     x, remaining = start, abs(stop - start) + 1
     while remaining > 0:
-        distance = abs(x - breakpoint)
-        length = min(1 << max(0, int(BLOCK_RATIO * distance).bit_length() - 1), remaining)
-        length = 1 << (length.bit_length() - 1)
+        allowed = max(1, min(int(BLOCK_RATIO * abs(x - breakpoint)), remaining))
+        length = _BLOCK_LENGTHS[bisect.bisect_right(_BLOCK_LENGTHS, allowed) - 1]
         blocks.append((x if direction > 0 else x - length + 1, length))
         x += direction * length
         remaining -= length
