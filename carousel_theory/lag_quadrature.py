@@ -197,60 +197,91 @@ def _gauss_rule(length: int, points: int) -> tuple[np.ndarray, np.ndarray, float
 _BLOCK_LENGTHS = sorted({math.floor(2.0 ** (k / 4.0)) for k in range(4 * 62)})
 
 
+def _block_length(distance: int, remaining: int) -> int:
+    """The largest of :data:`_BLOCK_LENGTHS` ≤ min(BLOCK_RATIO × distance, remaining) (at least 1)."""
+    allowed = max(1, min(int(BLOCK_RATIO * distance), remaining))
+    return _BLOCK_LENGTHS[bisect.bisect_right(_BLOCK_LENGTHS, allowed) - 1]
+
+
+@functools.lru_cache(maxsize=4096)
+def _growth(distance: int) -> tuple[list[int], list[int], list[int]]:
+    """(offset, length, end offset) of the blocks grown from ``distance`` away from a breakpoint with
+    nothing to stop them, out to 2⁶² (a record's blocks are a prefix of these, then a few clipped ones)."""
+    offsets, lengths, ends, x = [], [], [], 0
+    while distance + x < 1 << 62:
+        length = _block_length(distance + x, 1 << 62)
+        offsets.append(x)
+        lengths.append(length)
+        x += length
+        ends.append(x)
+    return offsets, lengths, ends
+
+
 def _grow(start: int, stop: int, breakpoint: int, direction: int) -> list[tuple[int, int]]:
     """Blocks (first, length) covering start … stop (direction +1 away from a breakpoint on the left,
-    −1 away from one on the right): lengths from :data:`_BLOCK_LENGTHS`, ≤ BLOCK_RATIO × distance."""
-    blocks: list[tuple[int, int]] = []
-    x, remaining = start, abs(stop - start) + 1
+    −1 away from one on the right): lengths from :data:`_BLOCK_LENGTHS`, ≤ BLOCK_RATIO × distance and
+    ≤ what remains."""
+    span = abs(stop - start) + 1
+    offsets, lengths, ends = _growth(abs(start - breakpoint))
+    whole = bisect.bisect_right(ends, span)
+    pieces = zip(offsets[:whole], lengths[:whole], strict=True)
+    if direction > 0:
+        blocks = [(start + offset, length) for offset, length in pieces]
+    else:
+        blocks = [(start - offset - length + 1, length) for offset, length in pieces]
+    x = start + direction * (ends[whole - 1] if whole else 0)
+    remaining = span - abs(x - start)
     while remaining > 0:
-        allowed = max(1, min(int(BLOCK_RATIO * abs(x - breakpoint)), remaining))
-        length = _BLOCK_LENGTHS[bisect.bisect_right(_BLOCK_LENGTHS, allowed) - 1]
+        length = _block_length(abs(x - breakpoint), remaining)
         blocks.append((x if direction > 0 else x - length + 1, length))
         x += direction * length
         remaining -= length
     return blocks
 
 
+def _segment_blocks(first: int, last: int, left: int | None, right: int | None) -> list[tuple[int, int]]:
+    """Blocks growing away from the breakpoints on either side of first … last, meeting half-way."""
+    middle = last if right is None else first - 1 if left is None else (left + right) // 2
+    middle = min(max(middle, first - 1), last)
+    blocks: list[tuple[int, int]] = []
+    if left is not None and middle >= first:
+        blocks += _grow(first, middle, left, 1)
+    if right is not None and middle < last:
+        blocks += _grow(last, middle + 1, right, -1)
+    return blocks
+
+
 @functools.lru_cache(maxsize=1024)
-def _plan(
-    m_i: int, m_j: int, K_i: int, K_j: int, reach: int
-) -> tuple[np.ndarray, tuple[tuple[int, int], ...]]:
-    """(integer lags summed one by one, Gauss blocks (first, length)) covering −(K_i − 1) … K_j − 1
+def _plan(m_i: int, m_j: int, K_i: int, K_j: int, reach: int) -> tuple[np.ndarray, np.ndarray]:
+    """(integer lags summed one by one, Gauss blocks as rows (first, length)) covering −(K_i − 1) … K_j − 1
     (cached: the refits of one record plan the same pairs)."""
     low, high = -(K_i - 1), K_j - 1
-    breakpoints = np.unique([q + 2 for q, _ in ramp_positions(m_i, m_j)])
+    breakpoints = sorted({q + 2 for q, _ in ramp_positions(m_i, m_j)})
     zone = max(EXACT_REACH, reach + 8, GAUSS_POINTS + 2)
-    exact: list[np.ndarray] = []
+    exact: list[tuple[int, int]] = []
     blocks: list[tuple[int, int]] = []
-    cuts = sorted(
-        {low, high + 1, 0, K_j - K_i} | {int(b) + s for b in breakpoints for s in (-zone, zone + 1)}
-    )
+    cuts = sorted({low, high + 1, 0, K_j - K_i} | {b + s for b in breakpoints for s in (-zone, zone + 1)})
     for start, stop in itertools.pairwise(cuts):
         first, last = max(start, low), min(stop - 1, high)
         if first > last:
             continue
-        below, above = breakpoints[breakpoints < first], breakpoints[breakpoints > last]
-        left = int(below[-1]) if len(below) else None
-        right = int(above[0]) if len(above) else None
-        inside = len(below) + len(above) < len(breakpoints)
+        below = bisect.bisect_left(breakpoints, first)  # breakpoints < first
+        above = len(breakpoints) - bisect.bisect_right(breakpoints, last)  # breakpoints > last
+        left = breakpoints[below - 1] if below else None
+        right = breakpoints[len(breakpoints) - above] if above else None
         near = min(
             first - left if left is not None else math.inf, right - last if right is not None else math.inf
         )
-        if inside or near <= zone or last - first < 2 * GAUSS_POINTS:
-            exact.append(np.arange(first, last + 1))
-            continue
-        # Blocks grow away from the breakpoints on either side and meet half-way between them.
-        middle = last if right is None else first - 1 if left is None else (left + right) // 2
-        middle = min(max(middle, first - 1), last)
-        if left is not None and middle >= first:
-            blocks += _grow(first, middle, left, 1)
-        if right is not None and middle < last:
-            blocks += _grow(last, middle + 1, right, -1)
-    small = [(f, n) for f, n in blocks if n <= 2 * GAUSS_POINTS]
-    exact += [np.arange(f, f + n) for f, n in small]
-    large = tuple((f, n) for f, n in blocks if n > 2 * GAUSS_POINTS)
-    lags = np.unique(np.concatenate(exact)) if exact else np.zeros(0, dtype=np.int64)
+        if below + above < len(breakpoints) or near <= zone or last - first < 2 * GAUSS_POINTS:
+            exact.append((first, last))
+        else:
+            blocks += _segment_blocks(first, last, left, right)
+    exact += [(f, f + n - 1) for f, n in blocks if n <= 2 * GAUSS_POINTS]
+    large = np.array([(f, n) for f, n in blocks if n > 2 * GAUSS_POINTS], dtype=np.int64).reshape(-1, 2)
+    ranges = [np.arange(first, last + 1) for first, last in exact]
+    lags = np.unique(np.concatenate(ranges)) if ranges else np.zeros(0, dtype=np.int64)
     lags.setflags(write=False)
+    large.setflags(write=False)
     return lags, large
 
 
@@ -347,20 +378,6 @@ def _newton_series(
 
 
 # --- the sum --------------------------------------------------------------------------------------
-
-
-@functools.lru_cache(maxsize=1024)
-def _block_nodes(
-    blocks: tuple[tuple[int, int], ...],
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(node lags, node weights, block index of each node, log h_p of each block)."""
-    firsts = np.array([first for first, _ in blocks], dtype=np.float64)
-    rules = [_gauss_rule(length, GAUSS_POINTS) for _, length in blocks]
-    offsets = np.stack([rule[0] for rule in rules])
-    weights = np.stack([rule[1] for rule in rules])
-    log_norms = np.array([rule[2] for rule in rules])
-    owner = np.repeat(np.arange(len(blocks)), GAUSS_POINTS)
-    return (firsts[:, None] + offsets).ravel(), weights.ravel(), owner, log_norms
 
 
 def _derivative_bounds(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, ends: np.ndarray) -> np.ndarray:
@@ -498,25 +515,23 @@ def _merged_runs(firsts: np.ndarray, lasts: np.ndarray) -> tuple[np.ndarray, np.
     return firsts[starts], reach[np.concatenate((starts[1:] - 1, [len(firsts) - 1]))]
 
 
-def _block_layout(
-    plans: Sequence[tuple[np.ndarray, tuple[tuple[int, int], ...]]],
-) -> tuple[np.ndarray, ...]:
-    """(node lags, node weights, node's block, block's pair, block ends, log h_p) of every pair's blocks."""
-    parts: list[list[np.ndarray]] = [[] for _ in range(6)]
-    count = 0
-    for row, (_, blocks) in enumerate(plans):
-        if not blocks:
-            continue
-        nodes, weights, block, log_norms = _block_nodes(blocks)
-        ends = np.array([(first, first + length - 1) for first, length in blocks], dtype=np.float64)
-        for part, value in zip(
-            parts, (nodes, weights, block + count, np.full(len(blocks), row), ends, log_norms), strict=True
-        ):
-            part.append(value)
-        count += len(blocks)
-    if not count:
+def _block_layout(plans: Sequence[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, ...]:
+    """(node lags, node weights, node's block, block's pair, block ends, log h_p) of every pair's Gauss
+    blocks (one rule per distinct block length)."""
+    blocks = np.concatenate([rows for _, rows in plans])
+    if not len(blocks):
         return ()
-    return tuple(np.concatenate(part) for part in parts)
+    block_owner = np.repeat(np.arange(len(plans)), [len(rows) for _, rows in plans])
+    distinct, which = np.unique(blocks[:, 1], return_inverse=True)
+    rules = [_gauss_rule(int(length), GAUSS_POINTS) for length in distinct.tolist()]
+    offsets = np.stack([rule[0] for rule in rules])[which]
+    weights = np.stack([rule[1] for rule in rules])[which]
+    log_norms = np.array([rule[2] for rule in rules])[which]
+    firsts = blocks[:, 0].astype(np.float64)
+    ends = np.column_stack((firsts, firsts + blocks[:, 1] - 1))
+    nodes = (firsts[:, None] + offsets).ravel()
+    block = np.repeat(np.arange(len(blocks)), GAUSS_POINTS)
+    return nodes, weights.ravel(), block, block_owner, ends, log_norms
 
 
 def _block_sums(

@@ -25,10 +25,10 @@ from carousel_theory import symbols
 from carousel_theory.increment_sums import (
     FLICKER_FOURTH_SUM,
     FLICKER_INCREMENT_AUTOCOVARIANCE,
-    allan_variance_from_fourth_sum,
     LOG_RATIO_COEFFICIENTS,
     LOG_RATIO_SLOPES,
     SQUARE_SUM_HEAD,
+    allan_variance_from_fourth_sum,
     finite_fourth_sum,
     flicker_allan_variance_closed,
     flicker_fourth_sum,
@@ -207,7 +207,9 @@ def test_flicker_fourth_sum_at_large_arguments_against_mpmath(d, dps):
 
 
 @pytest.mark.parametrize("d", ["0.02", "0.25", "0.5", "0.5000001", "0.77", "0.98"])
-@pytest.mark.parametrize("count", [1, SQUARE_SUM_HEAD - 1, SQUARE_SUM_HEAD, SQUARE_SUM_HEAD + 1, 5_000, 250_001])
+@pytest.mark.parametrize(
+    "count", [1, SQUARE_SUM_HEAD - 1, SQUARE_SUM_HEAD, SQUARE_SUM_HEAD + 1, 5_000, 250_001]
+)
 def test_squared_rising_factorial_sum_against_every_term_summed(d, count):
     # Reference: Σ_j (Γ(j + d)/Γ(j))² over every j, each term from mpmath at 40 digits (the product
     # recurrence F(j + 1) = F(j)(j + d)/j), summed exactly by fsum.
@@ -220,3 +222,16 @@ def test_squared_rising_factorial_sum_against_every_term_summed(d, count):
             term *= (j + step) / j
         exact = mpmath.fsum(terms)
     assert abs(got - float(exact)) <= 1e-13 * float(exact)
+
+
+@pytest.mark.parametrize(("k", "largest"), [(4, sp.Rational(1, 4)), (9, sp.Rational(98, 100))])
+def test_first_omitted_coefficients_of_the_even_series_are_bounded(k, largest):
+    # The truncation statement of the evaluator: |e_4(s)| ≤ ¼ and |e_9(s)| ≤ 0.98 for s = 1 + 2d ∈ [1, 3],
+    # by the exact extrema of the polynomial (end points and real roots of its derivative).
+    s = sp.Symbol("s", positive=True)
+    coefficient = sp.Poly(sp.expand(-2 * sp.bernoulli(2 * k + 1, (1 + s) / 2) / (2 * k * (2 * k + 1))), s)
+    candidates = [sp.Integer(1), sp.Integer(3)]
+    candidates += [root for root in sp.real_roots(coefficient.diff(s)) if 1 <= root <= 3]
+    assert max(abs(coefficient.eval(point)).evalf(30) for point in candidates) <= largest
+    if k == 4:
+        assert coefficient == sp.Poly(sp.expand(LOG_RATIO_COEFFICIENTS[3]), s)
