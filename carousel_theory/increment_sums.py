@@ -52,6 +52,7 @@ __all__ = [
     "finite_fourth_sum",
     "flicker_allan_variance_closed",
     "flicker_fourth_sum",
+    "flicker_fourth_sum_at_distance",
     "flicker_normalisation",
     "rising_factorial",
 ]
@@ -221,14 +222,19 @@ def _large_argument_ratio(j: np.ndarray, d: float, near_half: bool) -> np.ndarra
 def flicker_fourth_sum(x: Any, d: float) -> np.ndarray:
     """:data:`FLICKER_FOURTH_SUM` at integers ``x`` (unit σ_w²), up to a quadratic in x that the Allan and
     cross-covariance weights remove (the module text)."""
-    j = np.abs(np.asarray(x, dtype=np.float64) + 2.0)  # H is even about x = −2
+    return flicker_fourth_sum_at_distance(np.abs(np.asarray(x, dtype=np.float64) + 2.0), d)
+
+
+def flicker_fourth_sum_at_distance(j: np.ndarray, d: float) -> np.ndarray:
+    """:func:`flicker_fourth_sum` at x with |x + 2| = ``j`` (H is even about x = −2)."""
     d = float(d)
     near_half = abs(d - 0.5) <= _NEAR_HALF
-    ratio = np.empty(j.shape)
     large = j >= ASYMPTOTIC_FROM
-    if np.any(large):
+    if np.all(large):
+        ratio = _large_argument_ratio(j, d, near_half)
+    else:
+        ratio = np.empty(j.shape)
         ratio[large] = _large_argument_ratio(j[large], d, near_half)
-    if not np.all(large):
         small = j[~large]
         ratio[~large] = (
             _near_half_ratio(small, d) if near_half else _rising_numeric(small - 2.0, d) / (d - 0.5)

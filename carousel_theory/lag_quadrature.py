@@ -59,7 +59,7 @@ from scipy import special
 
 from carousel_theory.increment_sums import (
     finite_fourth_sum,
-    flicker_fourth_sum,
+    flicker_fourth_sum_at_distance,
     flicker_normalisation,
     rising_factorial,
 )
@@ -118,16 +118,15 @@ class LagModel:
         return cls(gamma, total, low, table, flicker, float(model.flicker_d), reach)
 
     def fourth_sum(self, x: np.ndarray) -> np.ndarray:
-        """Σ_t θ_t H_t(x) at points x (integers within the finite terms' reach of −2), element by element."""
-        result = np.empty(x.shape)
-        index = np.rint(x).astype(np.int64) - self.table_low
-        near = (index >= 0) & (index < len(self.table)) & (np.abs(x + 2.0) <= self.reach + 6)
-        result[near] = self.table[index[near]]
-        far = ~near
-        value = x[far]
-        result[far] = np.where(value > 0, _cubic(self, value), 0.0)
+        """Σ_t θ_t H_t(x) at points x (integers within the finite terms' reach of −2), element by element:
+        the table within reach + 6 of −2 (it spans −reach − 8 … reach + 7), the cubic beyond, and 1/f."""
+        distance = np.abs(x + 2.0)
+        result = np.where(x > 0, _cubic(self, x), 0.0)
+        near = distance <= self.reach + 6
+        if np.any(near):
+            result[near] = self.table[np.rint(x[near]).astype(np.int64) - self.table_low]
         if self.flicker_variance:
-            result += self.flicker_variance * flicker_fourth_sum(x, self.flicker_d)
+            result += self.flicker_variance * flicker_fourth_sum_at_distance(distance, self.flicker_d)
         return result
 
 
