@@ -8,7 +8,8 @@ from x = −2, so c is smooth away from the breakpoints b_q = q + 2; N_ij is lin
 Scheme
     Exact: every integer lag within ``EXACT_REACH`` (and the AR reach) of a breakpoint.
     Elsewhere: blocks of consecutive lags, each at most ``BLOCK_RATIO`` times its distance to the
-    nearest breakpoint, summed by the p-point discrete Gauss rule of the uniform measure on the block's
+    nearest breakpoint (lengths ⌊2^{k/4}⌋, the largest that fits, so that few rules serve every block),
+    summed by the p-point discrete Gauss rule of the uniform measure on the block's
     integers (nodes by Golub–Welsch from the discrete Chebyshev recurrence β_k = k²(L² − k²)/(4(4k² − 1))).
     On a block the finite terms are cubic polynomials, so N c² is a polynomial of degree ≤ 7 plus the 1/f
     part; the rule is exact for degree ≤ 2p − 1.
@@ -34,12 +35,19 @@ Far tail (distance from the support ≥ ``FAR`` times its width)
     coefficients of B_{m_i}(1 + t)² B_{m_j}(1 + t)²), with remainder ≤ ν_{R+1} |Δ^{R+1} γ_z(x₀ − R − 1)|
     (Newton's interpolation remainder and the monotone derivative above); that remainder is added to the
     bound through Σ w N e (2|c| + e). Pairs whose support is at most ``_DIRECT_WIDTH`` lags wide take c
-    elsewhere from Σ_u W(u) γ_z(δ + u) directly (at integer lags, and outside the support at any lag).
+    elsewhere from Σ_u W(u) γ_z(δ + u) directly (at integer lags, by γ_z evaluated once on the integers the
+lags reach and correlated with W, and outside the support at any lag).
 
-Many pairs (:func:`counted_square_sums`, all the τ pairs of one covariance): the integer arguments q − δ
-of H at the pairs' exact lags are merged into runs of consecutive integers and H is evaluated once on
-them (octave pairs share about thirty in thirty-one of these arguments); each pair then looks them up. H
-is evaluated element by element, so every sum and bound is bit for bit the one of the pair alone.
+Many pairs (:func:`counted_square_sums`, all the τ pairs of one covariance) are evaluated together:
+each pair is a row of :class:`_Pairs` (its ramp positions and weights, padded to nine with weight 0, and
+m_i, m_j, K_i, K_j), every lag and Gauss node carries the index of its row, and each step above (the
+partition into exact / direct / far, the nine-term sum, the Newton series, the derivative bounds) is one
+array operation over all pairs; the sums and bounds are reduced per row by ``np.bincount`` in the
+order of the row's own lags. At the exact lags H is needed only at integers: runs of consecutive lags
+give runs of arguments q − δ, merged across pairs (octave pairs share about thirty in thirty-one), H is
+evaluated once on their union and gathered by the run's offset. Everything is element by element and
+each row is reduced in its own order, so each pair's sum and bound are, bit for bit, those of the pair
+alone (:func:`counted_square_sum` is the batch of one).
 
 Rounding is not in the bound: where the support is wider, the nine-term sum of H loses about (m_j/m_i)²
 ulps; the tests hold the whole to the bound plus 1e-11 relative.
