@@ -541,6 +541,21 @@ def _block_layout(plans: Sequence[tuple[np.ndarray, np.ndarray]]) -> tuple[np.nd
     return nodes, weights.ravel(), block, block_owner, ends, log_norms
 
 
+#: Gauss nodes are evaluated this many at a time, so that the (nodes × 9) temporaries stay in cache.
+_CHUNK = 1 << 14
+
+
+def _chunked_values(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_batch_values` over consecutive chunks of ``lags`` (element by element, so the same values)."""
+    values, errors = np.empty(len(lags)), np.empty(len(lags))
+    for start in range(0, len(lags), _CHUNK):
+        part = slice(start, start + _CHUNK)
+        values[part], errors[part] = _batch_values(pairs, lag_model, owner[part], lags[part])
+    return values, errors
+
+
 def _block_sums(
     pairs: _Pairs, lag_model: LagModel, layout: tuple[np.ndarray, ...]
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -550,7 +565,7 @@ def _block_sums(
         return np.zeros(size), np.zeros(size)
     nodes, weights, block, block_owner, ends, log_norms = layout
     owner = block_owner[block]
-    values, errors = _batch_values(pairs, lag_model, owner, nodes)
+    values, errors = _chunked_values(pairs, lag_model, owner, nodes)
     weighted = weights * pairs.count(owner, nodes)
     total = np.bincount(owner, weighted * (values * values), minlength=size)
     bound = np.bincount(owner, weighted * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
