@@ -172,15 +172,8 @@ def test_batched_quadrature_of_a_full_model_against_the_every_lag_engine(d, monk
     # in the test above: 1e-10 of √(C_ii C_jj) (reached, near 5e-11, only by the widest ratio m_j/m_i =
     # 1024 at d ≥ 0.85, where the nine-term sum loses about (m_j/m_i)² ulps and the reference's moving
     # sums of a slowly decaying γ_z lose as much).
-    model = NoiseModel(
-        sample_rate=1.0,
-        white_variance=0.5,
-        rrw_variance=1e-6,
-        flicker_variance=1.0,
-        flicker_d=d,
-        ar_variance=0.3,
-        ar_coefficients=(0.5, 0.2),
-    )
+    variances = {"white_variance": 0.5, "rrw_variance": 1e-6, "flicker_variance": 1.0, "ar_variance": 0.3}
+    model = NoiseModel(sample_rate=1.0, flicker_d=d, ar_coefficients=(0.5, 0.2), **variances)
     sizes = np.array([1, 2, 3, 4, 8, 16, 32, 64, 128, 256, 512, 1024])
     length = 24_000
     reference = allan_estimate_covariance(model, sizes, length)
