@@ -100,15 +100,22 @@ _STIRLING_FROM = 16.0
 def rising_factorial(a: Any, step: float) -> np.ndarray:
     """Γ(a + step)/Γ(a) to a few 1e-14 relative (the rounding of a logarithm of size step·log a).
 
-    scipy's ``poch`` below a = 16; above it the Stirling difference (a − ½) log(1 + step/a) +
-    step log(a + step) − step + Σ_k c_k [(a + step)^{1−2k} − a^{1−2k}], so that no difference of two
-    large log Γ values is formed (scipy's ``poch`` loses about 1e-11 near a = 10⁴).
+    scipy's ``poch`` below a = 16; above it, for 1 ≤ step ≤ 3, the even series of the module text at
+    w = a + (step − 1)/2 (one logarithm, a polynomial in w⁻², one exponential), and for other steps the
+    Stirling difference (a − ½) log(1 + step/a) + step log(a + step) − step + Σ_k c_k [(a + step)^{1−2k} −
+    a^{1−2k}]; in both no difference of two large log Γ values is formed (scipy's ``poch`` loses about
+    1e-11 near a = 10⁴).
     """
     a = np.asarray(a, dtype=np.float64)
     result = np.empty(a.shape)
     large = a >= _STIRLING_FROM
     if not np.all(large):
         result[~large] = special.poch(a[~large], step)
+    if 1.0 <= step <= 3.0:  # the even series of the module text, w = a + (step − 1)/2 ≥ 16
+        middle = a[large] + (step - 1.0) / 2.0
+        series = _even_series(_log_ratio_coefficients(step), middle)
+        result[large] = np.exp(step * np.log(middle) + series)
+        return result
     for low, high, count in ((_STIRLING_FROM, 1e3, len(_STIRLING)), (1e3, np.inf, 3)):
         # Above a = 1000 three terms leave less than 1e-24 (the fourth is B₈/56 · a⁻⁷).
         chosen = (a >= low) & (a < high)

@@ -313,12 +313,18 @@ def _increment_difference(x: np.ndarray, d: float, order: int) -> np.ndarray:
     return base / rising_factorial(x + d - 1.0, 3.0 - 2.0 * d + order)
 
 
+@functools.lru_cache(maxsize=256)
+def _binomials(m: int) -> np.ndarray:
+    """C(m, r), r = 1 … R + 2 (the coefficients of B_m(1 + t) = ((1 + t)^m − 1)/t, shifted)."""
+    return special.comb(m, np.arange(1, _NEWTON_TERMS + 3), exact=False)
+
+
 @functools.lru_cache(maxsize=4096)
 def _factorial_moments(m_i: int, m_j: int, scale: float) -> np.ndarray:
     """ν_r / S^r, r = 0 … R + 1: the coefficients of B_{m_i}(1 + t)² B_{m_j}(1 + t)² in t = τ/S."""
     terms = _NEWTON_TERMS + 2
     powers = scale ** -np.arange(terms, dtype=np.float64)
-    factors = [special.comb(m, np.arange(1, terms + 1), exact=False) * powers for m in (m_i, m_j)]
+    factors = [_binomials(m) * powers for m in (m_i, m_j)]
     result = np.array([1.0])
     for factor in (factors[0], factors[0], factors[1], factors[1]):
         result = np.convolve(result, factor)[:terms]
