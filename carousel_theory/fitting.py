@@ -54,7 +54,7 @@ from carousel_theory._validation import (
     check_positive_real,
 )
 from carousel_theory.allan import AllanResult, allan_variance, check_tau_range, with_model_intervals
-from carousel_theory.increment_sums import rising_factorial
+from carousel_theory.increment_sums import squared_rising_factorial_sum
 from carousel_theory.noise_model import NoiseModel, term_allan_variance
 from carousel_theory.progress import progress
 from carousel_theory.signal_checks import check_noise_signal, check_recording_signals
@@ -580,11 +580,9 @@ def _flicker_mean_variance(d: float, length: int) -> float:
     """Var ȳ of N = ``length`` samples of the 1/f process of TIM 2014 eq. (3) at σ_w² = 1:
     N⁻² Σ_{j<N} Ψ_j² (:func:`carousel_theory.propagation.flicker_averaged_bin_variance` at k = 1) with
     the partial sums Ψ_j = ψ_0 + … + ψ_j = Γ(j + 1 + d)/(Γ(1 + d) Γ(j + 1)) in closed form (the
-    coefficients of (1 − B)^{−d−1}), so one O(N) pass without a convolution."""
-    total, chunk = 0.0, 1 << 20
-    for start in range(0, length, chunk):
-        partial = rising_factorial(np.arange(start + 1, min(start + chunk, length) + 1, dtype=np.float64), d)
-        total += float(np.einsum("i,i->", partial, partial))
+    coefficients of (1 − B)^{−d−1}), summed by
+    :func:`carousel_theory.increment_sums.squared_rising_factorial_sum` at a cost independent of N."""
+    total = squared_rising_factorial_sum(d, length)
     return total / (math.gamma(1.0 + d) ** 2 * float(length) ** 2)
 
 

@@ -8,7 +8,8 @@ from x = −2, so c is smooth away from the breakpoints b_q = q + 2; N_ij is lin
 Scheme
     Exact: every integer lag within ``EXACT_REACH`` (and the AR reach) of a breakpoint.
     Elsewhere: blocks of consecutive lags, each at most ``BLOCK_RATIO`` times its distance to the
-    nearest breakpoint, summed by the p-point discrete Gauss rule of the uniform measure on the block's
+    nearest breakpoint (lengths ⌊2^{k/4}⌋, the largest that fits, so that few rules serve every block),
+    summed by the p-point discrete Gauss rule of the uniform measure on the block's
     integers (nodes by Golub–Welsch from the discrete Chebyshev recurrence β_k = k²(L² − k²)/(4(4k² − 1))).
     On a block the finite terms are cubic polynomials, so N c² is a polynomial of degree ≤ 7 plus the 1/f
     part; the rule is exact for degree ≤ 2p − 1.
@@ -34,12 +35,19 @@ Far tail (distance from the support ≥ ``FAR`` times its width)
     coefficients of B_{m_i}(1 + t)² B_{m_j}(1 + t)²), with remainder ≤ ν_{R+1} |Δ^{R+1} γ_z(x₀ − R − 1)|
     (Newton's interpolation remainder and the monotone derivative above); that remainder is added to the
     bound through Σ w N e (2|c| + e). Pairs whose support is at most ``_DIRECT_WIDTH`` lags wide take c
-    elsewhere from Σ_u W(u) γ_z(δ + u) directly (at integer lags, and outside the support at any lag).
+    elsewhere from Σ_u W(u) γ_z(δ + u) directly (at integer lags, by γ_z evaluated once on the integers the
+lags reach and correlated with W, and outside the support at any lag).
 
-Many pairs (:func:`counted_square_sums`, all the τ pairs of one covariance): the integer arguments q − δ
-of H at the pairs' exact lags are merged into runs of consecutive integers and H is evaluated once on
-them (octave pairs share about thirty in thirty-one of these arguments); each pair then looks them up. H
-is evaluated element by element, so every sum and bound is bit for bit the one of the pair alone.
+Many pairs (:func:`counted_square_sums`, all the τ pairs of one covariance) are evaluated together:
+each pair is a row of :class:`_Pairs` (its ramp positions and weights, padded to nine with weight 0, and
+m_i, m_j, K_i, K_j), every lag and Gauss node carries the index of its row, and each step above (the
+partition into exact / direct / far, the nine-term sum, the Newton series, the derivative bounds) is one
+array operation over all pairs; the sums and bounds are reduced per row by ``np.bincount`` in the
+order of the row's own lags. At the exact lags H is needed only at integers: runs of consecutive lags
+give runs of arguments q − δ, merged across pairs (octave pairs share about thirty in thirty-one), H is
+evaluated once on their union and gathered by the run's offset. Everything is element by element and
+each row is reduced in its own order, so each pair's sum and bound are, bit for bit, those of the pair
+alone (:func:`counted_square_sum` is the batch of one).
 
 Rounding is not in the bound: where the support is wider, the nine-term sum of H loses about (m_j/m_i)²
 ulps; the tests hold the whole to the bound plus 1e-11 relative.
@@ -47,18 +55,19 @@ ulps; the tests hold the whole to the bound plus 1e-11 relative.
 
 from __future__ import annotations
 
+import bisect
 import functools
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import special
 
 from carousel_theory.increment_sums import (
     finite_fourth_sum,
-    flicker_fourth_sum,
+    flicker_fourth_sum_at_distance,
     flicker_normalisation,
     rising_factorial,
 )
@@ -100,12 +109,6 @@ class LagModel:
     flicker_variance: float
     flicker_d: float
     reach: int
-    #: H tabulated at runs of consecutive integers (first integers, last integers, index of each run's
-    #: first value in the values, values), shared by many pairs (:func:`counted_square_sums`); H is
-    #: evaluated element by element, so a looked-up value is the value a direct call returns.
-    memo: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = field(
-        default=None, compare=False, repr=False
-    )
 
     @classmethod
     def of(cls, model: NoiseModel) -> LagModel:
@@ -123,34 +126,15 @@ class LagModel:
         return cls(gamma, total, low, table, flicker, float(model.flicker_d), reach)
 
     def fourth_sum(self, x: np.ndarray) -> np.ndarray:
-        """Σ_t θ_t H_t(x) at (integer-valued near −2) points x (looked up where :attr:`memo` holds x)."""
-        if self.memo is None:
-            return self._evaluate(x)
-        firsts, lasts, offsets, values = self.memo
-        result = np.empty(x.shape)
-        integral = x == np.rint(x)
-        points = x[integral]
-        run = np.maximum(np.searchsorted(firsts, points, side="right") - 1, 0)
-        found = (points >= firsts[run]) & (points <= lasts[run])
-        looked_up = np.empty(points.shape)
-        looked_up[found] = values[(offsets[run] + (points - firsts[run]))[found].astype(np.int64)]
-        if not np.all(found):
-            looked_up[~found] = self._evaluate(points[~found])
-        result[integral] = looked_up
-        if not np.all(integral):
-            result[~integral] = self._evaluate(x[~integral])
-        return result
-
-    def _evaluate(self, x: np.ndarray) -> np.ndarray:
-        result = np.empty(x.shape)
-        index = np.rint(x).astype(np.int64) - self.table_low
-        near = (index >= 0) & (index < len(self.table)) & (np.abs(x + 2.0) <= self.reach + 6)
-        result[near] = self.table[index[near]]
-        far = ~near
-        value = x[far]
-        result[far] = np.where(value > 0, _cubic(self, value), 0.0)
+        """Σ_t θ_t H_t(x) at points x (integers within the finite terms' reach of −2), element by element:
+        the table within reach + 6 of −2 (it spans −reach − 8 … reach + 7), the cubic beyond, and 1/f."""
+        distance = np.abs(x + 2.0)
+        result = np.where(x > 0, _cubic(self, x), 0.0)
+        near = distance <= self.reach + 6
+        if np.any(near):
+            result[near] = self.table[np.rint(x[near]).astype(np.int64) - self.table_low]
         if self.flicker_variance:
-            result += self.flicker_variance * flicker_fourth_sum(x, self.flicker_d)
+            result += self.flicker_variance * flicker_fourth_sum_at_distance(distance, self.flicker_d)
         return result
 
 
@@ -171,7 +155,8 @@ def _cubic(lag_model: LagModel, x: np.ndarray) -> np.ndarray:
 # --- the pair's geometry ------------------------------------------------------------------------------
 
 
-def ramp_positions(m_i: int, m_j: int) -> list[tuple[int, int]]:
+@functools.lru_cache(maxsize=4096)
+def ramp_positions(m_i: int, m_j: int) -> tuple[tuple[int, int], ...]:
     """(q, w) with W_ij(−δ) = Σ w R₃(q − δ): q = −p_αβ, merged where positions coincide (module text of
     :mod:`carousel_theory.tau_covariance`)."""
     merged: dict[int, int] = {}
@@ -179,7 +164,7 @@ def ramp_positions(m_i: int, m_j: int) -> list[tuple[int, int]]:
         for beta, w_beta in enumerate((1, -2, 1)):
             q = -(2 - 2 * m_i + alpha * m_i + beta * m_j)
             merged[q] = merged.get(q, 0) + w_alpha * w_beta
-    return [(q, w) for q, w in sorted(merged.items()) if w]
+    return tuple((q, w) for q, w in sorted(merged.items()) if w)
 
 
 @dataclass(frozen=True)
@@ -201,7 +186,7 @@ class _Pair:
         return values @ self.weights
 
 
-@functools.lru_cache(maxsize=64)
+@functools.lru_cache(maxsize=1024)
 def _gauss_rule(length: int, points: int) -> tuple[np.ndarray, np.ndarray, float]:
     """(offsets in [0, L − 1], weights, log h_p) of the p-point Gauss rule of the uniform measure on
     {0, …, L − 1}: Golub–Welsch on the discrete Chebyshev recurrence (module text)."""
@@ -214,61 +199,96 @@ def _gauss_rule(length: int, points: int) -> tuple[np.ndarray, np.ndarray, float
     return nodes + (length - 1) / 2.0, weights, math.log(length) + float(np.sum(np.log(beta)))
 
 
+#: Block lengths: ⌊2^{k/4}⌋, k = 0, 1, … (quarter octaves, so that a block is close to BLOCK_RATIO × its
+#: distance while the Gauss rules stay few and cached).
+_BLOCK_LENGTHS = sorted({math.floor(2.0 ** (k / 4.0)) for k in range(4 * 62)})
+
+
+def _block_length(distance: int, remaining: int) -> int:
+    """The largest of :data:`_BLOCK_LENGTHS` ≤ min(BLOCK_RATIO × distance, remaining) (at least 1)."""
+    allowed = max(1, min(int(BLOCK_RATIO * distance), remaining))
+    return _BLOCK_LENGTHS[bisect.bisect_right(_BLOCK_LENGTHS, allowed) - 1]
+
+
+@functools.lru_cache(maxsize=4096)
+def _growth(distance: int) -> tuple[list[int], list[int], list[int]]:
+    """(offset, length, end offset) of the blocks grown from ``distance`` away from a breakpoint with
+    nothing to stop them, out to 2⁶² (a record's blocks are a prefix of these, then a few clipped ones)."""
+    offsets, lengths, ends, x = [], [], [], 0
+    while distance + x < 1 << 62:
+        length = _block_length(distance + x, 1 << 62)
+        offsets.append(x)
+        lengths.append(length)
+        x += length
+        ends.append(x)
+    return offsets, lengths, ends
+
+
 def _grow(start: int, stop: int, breakpoint: int, direction: int) -> list[tuple[int, int]]:
     """Blocks (first, length) covering start … stop (direction +1 away from a breakpoint on the left,
-    −1 away from one on the right): power-of-two lengths ≤ BLOCK_RATIO × distance."""
-    blocks: list[tuple[int, int]] = []
-    x, remaining = start, abs(stop - start) + 1
+    −1 away from one on the right): lengths from :data:`_BLOCK_LENGTHS`, ≤ BLOCK_RATIO × distance and
+    ≤ what remains."""
+    span = abs(stop - start) + 1
+    offsets, lengths, ends = _growth(abs(start - breakpoint))
+    whole = bisect.bisect_right(ends, span)
+    pieces = zip(offsets[:whole], lengths[:whole], strict=True)
+    if direction > 0:
+        blocks = [(start + offset, length) for offset, length in pieces]
+    else:
+        blocks = [(start - offset - length + 1, length) for offset, length in pieces]
+    x = start + direction * (ends[whole - 1] if whole else 0)
+    remaining = span - abs(x - start)
     while remaining > 0:
-        distance = abs(x - breakpoint)
-        length = min(1 << max(0, int(BLOCK_RATIO * distance).bit_length() - 1), remaining)
-        length = 1 << (length.bit_length() - 1)
+        length = _block_length(abs(x - breakpoint), remaining)
         blocks.append((x if direction > 0 else x - length + 1, length))
         x += direction * length
         remaining -= length
     return blocks
 
 
+def _segment_blocks(first: int, last: int, left: int | None, right: int | None) -> list[tuple[int, int]]:
+    """Blocks growing away from the breakpoints on either side of first … last, meeting half-way."""
+    middle = last if right is None else first - 1 if left is None else (left + right) // 2
+    middle = min(max(middle, first - 1), last)
+    blocks: list[tuple[int, int]] = []
+    if left is not None and middle >= first:
+        blocks += _grow(first, middle, left, 1)
+    if right is not None and middle < last:
+        blocks += _grow(last, middle + 1, right, -1)
+    return blocks
+
+
 @functools.lru_cache(maxsize=1024)
-def _plan(
-    m_i: int, m_j: int, K_i: int, K_j: int, reach: int
-) -> tuple[np.ndarray, tuple[tuple[int, int], ...]]:
-    """(integer lags summed one by one, Gauss blocks (first, length)) covering −(K_i − 1) … K_j − 1
+def _plan(m_i: int, m_j: int, K_i: int, K_j: int, reach: int) -> tuple[np.ndarray, np.ndarray]:
+    """(integer lags summed one by one, Gauss blocks as rows (first, length)) covering −(K_i − 1) … K_j − 1
     (cached: the refits of one record plan the same pairs)."""
     low, high = -(K_i - 1), K_j - 1
-    breakpoints = np.unique([q + 2 for q, _ in ramp_positions(m_i, m_j)])
+    breakpoints = sorted({q + 2 for q, _ in ramp_positions(m_i, m_j)})
     zone = max(EXACT_REACH, reach + 8, GAUSS_POINTS + 2)
-    exact: list[np.ndarray] = []
+    exact: list[tuple[int, int]] = []
     blocks: list[tuple[int, int]] = []
-    cuts = sorted(
-        {low, high + 1, 0, K_j - K_i} | {int(b) + s for b in breakpoints for s in (-zone, zone + 1)}
-    )
+    cuts = sorted({low, high + 1, 0, K_j - K_i} | {b + s for b in breakpoints for s in (-zone, zone + 1)})
     for start, stop in itertools.pairwise(cuts):
         first, last = max(start, low), min(stop - 1, high)
         if first > last:
             continue
-        below, above = breakpoints[breakpoints < first], breakpoints[breakpoints > last]
-        left = int(below[-1]) if len(below) else None
-        right = int(above[0]) if len(above) else None
-        inside = len(below) + len(above) < len(breakpoints)
+        below = bisect.bisect_left(breakpoints, first)  # breakpoints < first
+        above = len(breakpoints) - bisect.bisect_right(breakpoints, last)  # breakpoints > last
+        left = breakpoints[below - 1] if below else None
+        right = breakpoints[len(breakpoints) - above] if above else None
         near = min(
             first - left if left is not None else math.inf, right - last if right is not None else math.inf
         )
-        if inside or near <= zone or last - first < 2 * GAUSS_POINTS:
-            exact.append(np.arange(first, last + 1))
-            continue
-        # Blocks grow away from the breakpoints on either side and meet half-way between them.
-        middle = last if right is None else first - 1 if left is None else (left + right) // 2
-        middle = min(max(middle, first - 1), last)
-        if left is not None and middle >= first:
-            blocks += _grow(first, middle, left, 1)
-        if right is not None and middle < last:
-            blocks += _grow(last, middle + 1, right, -1)
-    small = [(f, n) for f, n in blocks if n <= 2 * GAUSS_POINTS]
-    exact += [np.arange(f, f + n) for f, n in small]
-    large = tuple((f, n) for f, n in blocks if n > 2 * GAUSS_POINTS)
-    lags = np.concatenate(exact) if exact else np.zeros(0, dtype=np.int64)
+        if below + above < len(breakpoints) or near <= zone or last - first < 2 * GAUSS_POINTS:
+            exact.append((first, last))
+        else:
+            blocks += _segment_blocks(first, last, left, right)
+    exact += [(f, f + n - 1) for f, n in blocks if n <= 2 * GAUSS_POINTS]
+    large = np.array([(f, n) for f, n in blocks if n > 2 * GAUSS_POINTS], dtype=np.int64).reshape(-1, 2)
+    ranges = [np.arange(first, last + 1) for first, last in exact]
+    lags = np.unique(np.concatenate(ranges)) if ranges else np.zeros(0, dtype=np.int64)
     lags.setflags(write=False)
+    large.setflags(write=False)
     return lags, large
 
 
@@ -293,103 +313,170 @@ def _increment_difference(x: np.ndarray, d: float, order: int) -> np.ndarray:
     return base / rising_factorial(x + d - 1.0, 3.0 - 2.0 * d + order)
 
 
+@functools.lru_cache(maxsize=256)
+def _binomials(m: int) -> np.ndarray:
+    """C(m, r), r = 1 … R + 2 (the coefficients of B_m(1 + t) = ((1 + t)^m − 1)/t, shifted)."""
+    return special.comb(m, np.arange(1, _NEWTON_TERMS + 3), exact=False)
+
+
 @functools.lru_cache(maxsize=4096)
 def _factorial_moments(m_i: int, m_j: int, scale: float) -> np.ndarray:
     """ν_r / S^r, r = 0 … R + 1: the coefficients of B_{m_i}(1 + t)² B_{m_j}(1 + t)² in t = τ/S."""
     terms = _NEWTON_TERMS + 2
     powers = scale ** -np.arange(terms, dtype=np.float64)
-    factors = [special.comb(m, np.arange(1, terms + 1), exact=False) * powers for m in (m_i, m_j)]
+    factors = [_binomials(m) * powers for m in (m_i, m_j)]
     result = np.array([1.0])
     for factor in (factors[0], factors[0], factors[1], factors[1]):
         result = np.convolve(result, factor)[:terms]
     return result
 
 
-def _newton_series(pair: _Pair, lag_model: LagModel, nearest: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+@dataclass(frozen=True)
+class _Pairs:
+    """Many pairs as rows (:func:`counted_square_sums`): ramp positions and weights (rows padded at the
+    first position with weight 0), and m_i, m_j, K_i, K_j as floats. Every evaluation takes an ``owner``
+    array (the row of each lag), so all the pairs of one covariance are evaluated by the same few array
+    operations, element by element: a pair's values do not depend on the others in the batch."""
+
+    positions: np.ndarray
+    weights: np.ndarray
+    m_i: np.ndarray
+    m_j: np.ndarray
+    K_i: np.ndarray
+    K_j: np.ndarray
+
+    @classmethod
+    def of(cls, pairs: Sequence[_Pair]) -> _Pairs:
+        columns = 9  # at most nine ramps; a fixed width keeps each row's sum in one order
+        positions, weights = np.empty((len(pairs), columns)), np.zeros((len(pairs), columns))
+        for row, pair in enumerate(pairs):
+            used = len(pair.positions)
+            positions[row, :used], positions[row, used:] = pair.positions, pair.positions[0]
+            weights[row, :used] = pair.weights
+        sizes = np.array([(p.m_i, p.m_j, p.K_i, p.K_j) for p in pairs], dtype=np.float64).reshape(-1, 4)
+        return cls(positions, weights, *sizes.T)
+
+    def count(self, owner: np.ndarray, delta: np.ndarray) -> np.ndarray:
+        """N_ij(δ), linear between the kinks 0 and K_j − K_i (also at non-integer δ inside a piece)."""
+        return np.minimum(self.K_i[owner] - 1, self.K_j[owner] - 1 - delta) - np.maximum(0, -delta) + 1
+
+    def nearest(self, owner: np.ndarray, lags: np.ndarray) -> np.ndarray:
+        """x₀, the argument of γ_z nearest to zero over the support of W at each lag (≤ 0 inside it)."""
+        return np.maximum(lags - 2 * self.m_i[owner] + 2, -lags - 2 * self.m_j[owner] + 2)
+
+    def width(self) -> np.ndarray:
+        """The support's width 2m_i + 2m_j − 4 (at least 1), the scale of the far-tail series."""
+        return np.maximum(2 * self.m_i + 2 * self.m_j - 4, 1)
+
+
+def _newton_series(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, nearest: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """(c, bound on its error) from Σ_{r≤R} ν_r Δ^r γ_z(x₀) at the nearest arguments x₀ (far tail)."""
-    d, scale = lag_model.flicker_d, float(max(2 * pair.m_i + 2 * pair.m_j - 4, 1))
-    moments = _factorial_moments(pair.m_i, pair.m_j, scale)
+    d, width = lag_model.flicker_d, pairs.width()
+    rows = np.unique(owner)
+    table = np.zeros((len(pairs.m_i), _NEWTON_TERMS + 2))
+    for row in rows.tolist():
+        table[row] = _factorial_moments(int(pairs.m_i[row]), int(pairs.m_j[row]), float(width[row]))
+    moments, scale = table[owner], width[owner]
     base = flicker_normalisation(d) / rising_factorial(nearest + d - 1.0, 3.0 - 2.0 * d)
     total, term = np.zeros_like(nearest), base.copy()
     for r in range(_NEWTON_TERMS + 1):
-        total += moments[r] * term
+        total += moments[:, r] * term
         term = term * (2.0 * d - 3.0 - r) * scale / (nearest + 2.0 - d + r)
     order = _NEWTON_TERMS + 1
-    remainder = moments[order] * np.abs(_increment_difference(nearest - order, d, order)) * scale**order
+    difference = np.abs(_increment_difference(nearest - order, d, order))
+    remainder = moments[:, order] * difference * scale**order
     return lag_model.flicker_variance * total, lag_model.flicker_variance * remainder
 
 
 # --- the sum --------------------------------------------------------------------------------------
 
 
-@functools.lru_cache(maxsize=1024)
-def _block_nodes(
-    blocks: tuple[tuple[int, int], ...],
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(node lags, node weights, block index of each node, log h_p of each block)."""
-    firsts = np.array([first for first, _ in blocks], dtype=np.float64)
-    rules = [_gauss_rule(length, GAUSS_POINTS) for _, length in blocks]
-    offsets = np.stack([rule[0] for rule in rules])
-    weights = np.stack([rule[1] for rule in rules])
-    log_norms = np.array([rule[2] for rule in rules])
-    owner = np.repeat(np.arange(len(blocks)), GAUSS_POINTS)
-    return (firsts[:, None] + offsets).ravel(), weights.ravel(), owner, log_norms
-
-
-def _far_arguments(pair: _Pair, lags: np.ndarray) -> np.ndarray:
-    """x₀, the argument of γ_z nearest to zero over the support of W at each lag (≤ 0 inside it)."""
-    return np.maximum(lags - 2 * pair.m_i + 2, -lags - 2 * pair.m_j + 2)
-
-
-def _derivative_bounds(pair: _Pair, lag_model: LagModel, blocks: np.ndarray) -> np.ndarray:
-    """B ≥ sup|c^{(p)}|/p! on each block (first, last): the branch bound, and in the far tail the
-    bound through W ≥ 0 and the monotone derivative of γ_z, whichever is smaller (module text)."""
+def _derivative_bounds(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, ends: np.ndarray) -> np.ndarray:
+    """B ≥ sup|c^{(p)}|/p! on each block (first, last) of the pair ``owner``: the branch bound, and in the
+    far tail the bound through W ≥ 0 and the monotone derivative of γ_z, whichever is smaller."""
     if not lag_model.flicker_variance:
-        return np.zeros(len(blocks))
-    d, breakpoints = lag_model.flicker_d, pair.positions + 2.0
-    distance = np.minimum(
-        np.abs(blocks[:, :1] - breakpoints[None, :]), np.abs(blocks[:, 1:] - breakpoints[None, :])
-    )
-    bound = _branch_bound(distance, d) @ np.abs(pair.weights)
-    nearest = np.minimum(_far_arguments(pair, blocks[:, 0]), _far_arguments(pair, blocks[:, 1]))
+        return np.zeros(len(ends))
+    d, breakpoints = lag_model.flicker_d, pairs.positions[owner] + 2.0
+    distance = np.minimum(np.abs(ends[:, :1] - breakpoints), np.abs(ends[:, 1:] - breakpoints))
+    bound = np.einsum("ij,ij->i", _branch_bound(distance, d), np.abs(pairs.weights[owner]))
+    nearest = np.minimum(pairs.nearest(owner, ends[:, 0]), pairs.nearest(owner, ends[:, 1]))
     tail = nearest > GAUSS_POINTS + 2
     if np.any(tail):
-        mass = float(pair.m_i) ** 2 * float(pair.m_j) ** 2
+        mass = pairs.m_i[owner[tail]] ** 2 * pairs.m_j[owner[tail]] ** 2
         far = mass * np.abs(_increment_difference(nearest[tail] - GAUSS_POINTS, d, GAUSS_POINTS))
         bound[tail] = np.minimum(bound[tail], far / math.factorial(GAUSS_POINTS))
     return lag_model.flicker_variance * bound
 
 
 def _partition(
-    pair: _Pair, lag_model: LagModel, lags: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray]:
-    """(x₀, far, direct or None, near): how c is taken at each lag (:func:`_values`)."""
-    nearest = _far_arguments(pair, lags)
-    width = max(2 * pair.m_i + 2 * pair.m_j - 4, 1)
-    far = (nearest >= FAR * width) & (nearest >= max(lag_model.reach + 8, _NEWTON_TERMS + 4))
-    far &= bool(lag_model.flicker_variance)
-    near = ~far
-    # Integer lags, or any lag outside the support (where every δ + u keeps one sign and γ_z is analytic).
-    direct = near & ((lags == np.rint(lags)) | (nearest >= 1)) if width <= _DIRECT_WIDTH else None
-    direct = direct if lag_model.flicker_variance else None
-    if direct is not None:
-        near &= ~direct
-    return nearest, far, direct, near
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(x₀, far, direct, near): how c is taken at each lag (:func:`_batch_values`)."""
+    nearest, width = pairs.nearest(owner, lags), pairs.width()[owner]
+    flicker = bool(lag_model.flicker_variance)
+    far = (nearest >= FAR * width) & (nearest >= max(lag_model.reach + 8, _NEWTON_TERMS + 4)) & flicker
+    # Narrow pairs at integer lags, or at any lag outside the support (where every δ + u keeps one sign
+    # and γ_z is analytic).
+    direct = ~far & (width <= _DIRECT_WIDTH) & ((lags == np.rint(lags)) | (nearest >= 1)) & flicker
+    return nearest, far, direct, ~far & ~direct
+
+
+def _nine_term_sum(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray) -> np.ndarray:
+    """c_ij(δ) = Σ_q w_q H(q − δ) at ``lags`` of the pairs ``owner``."""
+    values = lag_model.fourth_sum(pairs.positions[owner] - lags[:, None])
+    return np.einsum("ij,ij->i", values, pairs.weights[owner])
+
+
+def _tabulated_nine_term_sum(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> np.ndarray:
+    """:func:`_nine_term_sum` at integer ``lags`` sorted within each pair: runs of consecutive lags give
+    runs of arguments q − δ, merged across pairs (octave pairs share most of them); H is evaluated once
+    on their union and gathered by index (element by element, so each value is the direct one)."""
+    breaks = np.flatnonzero((np.diff(lags) != 1) | (np.diff(owner) != 0))
+    starts, stops = np.concatenate(([0], breaks + 1)), np.concatenate((breaks, [len(lags) - 1]))
+    positions = pairs.positions[owner[starts]]
+    lowest = (positions - lags[stops][:, None]).ravel()
+    first, last = _merged_runs(lowest, (positions - lags[starts][:, None]).ravel())
+    lengths = (last - first + 1).astype(np.int64)
+    offsets = np.concatenate(([0], np.cumsum(lengths)[:-1]))
+    keys = np.repeat(first - offsets, lengths) + np.arange(int(lengths.sum()))
+    values = lag_model.fourth_sum(keys.astype(np.float64))
+    run = np.searchsorted(first, lowest, side="right") - 1  # the merged run holding each argument run
+    base = (offsets[run] - first[run] + positions.ravel()).reshape(positions.shape)  # q − δ ↦ base − δ
+    index = base[np.repeat(np.arange(len(starts)), stops - starts + 1)] - lags[:, None]
+    return np.einsum("ij,ij->i", values[index.astype(np.int64)], pairs.weights[owner])
+
+
+def _batch_values(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray, *, tabulated: bool = False
+) -> tuple[np.ndarray, np.ndarray]:
+    """(c, bound on its error) at ``lags`` of the pairs ``owner``: the Newton series in the far tail;
+    elsewhere the nine-term sum of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u). ``tabulated``:
+    the lags are integers, sorted within each pair, and H is tabulated once for all of them."""
+    nearest, far, direct, near = _partition(pairs, lag_model, owner, lags)
+    values, errors = np.empty(len(lags)), np.zeros(len(lags))
+    if np.any(direct):
+        finite = replace(lag_model, flicker_variance=0.0)
+        chosen_owner, chosen = owner[direct], lags[direct]
+        flicker = np.empty(len(chosen))
+        for row in np.unique(chosen_owner).tolist():
+            mine = chosen_owner == row
+            flicker[mine] = _direct_flicker(int(pairs.m_i[row]), int(pairs.m_j[row]), lag_model, chosen[mine])
+        values[direct] = flicker + _nine_term_sum(pairs, finite, chosen_owner, chosen)
+    if np.any(near):
+        nine_term_sum = _tabulated_nine_term_sum if tabulated else _nine_term_sum
+        values[near] = nine_term_sum(pairs, lag_model, owner[near], lags[near])
+    if np.any(far):
+        values[far], errors[far] = _newton_series(pairs, lag_model, owner[far], nearest[far])
+    return values, errors
 
 
 def _values(pair: _Pair, lag_model: LagModel, lags: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(c, bound on its error) at ``lags``: the Newton series in the far tail; elsewhere the nine-term sum
-    of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u) (no cancellation)."""
-    nearest, far, direct, near = _partition(pair, lag_model, lags)
-    values, errors = np.empty(len(lags)), np.zeros(len(lags))
-    if direct is not None and np.any(direct):
-        values[direct] = _direct_flicker(pair, lag_model, lags[direct])
-        finite = replace(lag_model, flicker_variance=0.0, memo=None)
-        values[direct] += pair.cross_covariance(finite, lags[direct])
-    values[near] = pair.cross_covariance(lag_model, lags[near])
-    if np.any(far):
-        values[far], errors[far] = _newton_series(pair, lag_model, nearest[far])
-    return values, errors
+    """(c, bound on its error) of one pair at ``lags`` (:func:`_batch_values` with one row)."""
+    return _batch_values(_Pairs.of([pair]), lag_model, np.zeros(len(lags), dtype=np.int64), lags)
 
 
 @functools.lru_cache(maxsize=256)
@@ -400,14 +487,25 @@ def _window(m_i: int, m_j: int) -> np.ndarray:
     return np.convolve(triangle_i[::-1], triangle_j)
 
 
-def _direct_flicker(pair: _Pair, lag_model: LagModel, lags: np.ndarray) -> np.ndarray:
+def _direct_flicker(m_i: int, m_j: int, lag_model: LagModel, lags: np.ndarray) -> np.ndarray:
     """σ_w² Σ_u W(u) γ_z(δ + u) at integer lags or outside the support, γ_z(x) = C_d/rising(|x| + d − 1,
-    3 − 2d) (even on the integers, analytic on either side of the support)."""
-    d, window = lag_model.flicker_d, _window(pair.m_i, pair.m_j)
-    offsets = np.arange(-(2 * pair.m_i - 2), 2 * pair.m_j - 1, dtype=np.float64)
-    arguments = np.abs(lags[:, None] + offsets[None, :])
-    gamma = flicker_normalisation(d) / rising_factorial(arguments + d - 1.0, 3.0 - 2.0 * d)
-    return lag_model.flicker_variance * (gamma @ window)
+    3 − 2d) (even on the integers, analytic on either side of the support). At integer lags γ_z is
+    evaluated once on the integers the lags reach and correlated with W."""
+    d, window = lag_model.flicker_d, _window(m_i, m_j)
+    normalisation, step = flicker_normalisation(d), 3.0 - 2.0 * d
+    result = np.empty(len(lags))
+    integral = lags == np.rint(lags)
+    if np.any(integral):
+        points = lags[integral]
+        first, last = int(points.min()), int(points.max())
+        arguments = np.abs(np.arange(first - 2 * m_i + 2, last + 2 * m_j - 1, dtype=np.float64))
+        gamma = normalisation / rising_factorial(arguments + d - 1.0, step)
+        result[integral] = np.correlate(gamma, window, "valid")[(points - first).astype(np.int64)]
+    if not np.all(integral):
+        offsets = np.arange(-(2 * m_i - 2), 2 * m_j - 1, dtype=np.float64)
+        arguments = np.abs(lags[~integral][:, None] + offsets[None, :])
+        result[~integral] = (normalisation / rising_factorial(arguments + d - 1.0, step)) @ window
+    return lag_model.flicker_variance * result
 
 
 def _make_pair(m_i: int, m_j: int, K_i: int, K_j: int) -> _Pair:
@@ -418,40 +516,7 @@ def _make_pair(m_i: int, m_j: int, K_i: int, K_j: int) -> _Pair:
 
 def counted_square_sum(lag_model: LagModel, m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[float, float]:
     """(Σ_δ N_ij(δ) c_ij(δ)², proved bound on its error) for the overlapping estimator (module text)."""
-    pair = _make_pair(m_i, m_j, K_i, K_j)
-    exact, blocks = _plan(m_i, m_j, K_i, K_j, lag_model.reach)
-    lags = exact.astype(np.float64)
-    values, errors = _values(pair, lag_model, lags)
-    counts = pair.count(lags)
-    total = float(np.dot(counts, values * values))
-    bound = float(np.dot(counts, errors * (2.0 * np.abs(values) + errors)))
-    if blocks:
-        nodes, weights, owner, log_norms = _block_nodes(blocks)
-        values, errors = _values(pair, lag_model, nodes)
-        weighted = weights * pair.count(nodes)
-        total += float(np.dot(weighted, values * values))
-        bound += float(np.dot(weighted, errors * (2.0 * np.abs(values) + errors)))
-        ends = np.array([(first, first + length - 1) for first, length in blocks], dtype=np.float64)
-        derivative = _derivative_bounds(pair, lag_model, ends)
-        square_sums = np.bincount(owner, weights * values * values, minlength=len(blocks))
-        largest_count = np.maximum(pair.count(ends[:, 0]), pair.count(ends[:, 1]))
-        norms = np.exp(log_norms)
-        bound += float(
-            np.sum(derivative * largest_count * (2.0 * np.sqrt(norms * square_sums) + derivative * norms))
-        )
-    return total, bound
-
-
-def _argument_runs(lag_model: LagModel, pair: _Pair, lags: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(first, last) of the runs of consecutive integers q − δ at which :func:`_values` evaluates H
-    through the nine-term sum at the integer ``lags``."""
-    near = np.unique(lags[_partition(pair, lag_model, lags)[3]]).astype(np.int64)
-    if not len(near):
-        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    breaks = np.flatnonzero(np.diff(near) != 1)
-    starts, stops = near[np.concatenate(([0], breaks + 1))], near[np.concatenate((breaks, [len(near) - 1]))]
-    positions = pair.positions.astype(np.int64)[:, None]
-    return (positions - stops[None, :]).ravel(), (positions - starts[None, :]).ravel()
+    return counted_square_sums(lag_model, [(m_i, m_j, K_i, K_j)])[0]
 
 
 def _merged_runs(firsts: np.ndarray, lasts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -463,25 +528,77 @@ def _merged_runs(firsts: np.ndarray, lasts: np.ndarray) -> tuple[np.ndarray, np.
     return firsts[starts], reach[np.concatenate((starts[1:] - 1, [len(firsts) - 1]))]
 
 
+def _block_layout(plans: Sequence[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, ...]:
+    """(node lags, node weights, node's block, block's pair, block ends, log h_p) of every pair's Gauss
+    blocks (one rule per distinct block length)."""
+    blocks = np.concatenate([rows for _, rows in plans])
+    if not len(blocks):
+        return ()
+    block_owner = np.repeat(np.arange(len(plans)), [len(rows) for _, rows in plans])
+    distinct, which = np.unique(blocks[:, 1], return_inverse=True)
+    rules = [_gauss_rule(int(length), GAUSS_POINTS) for length in distinct.tolist()]
+    offsets = np.stack([rule[0] for rule in rules])[which]
+    weights = np.stack([rule[1] for rule in rules])[which]
+    log_norms = np.array([rule[2] for rule in rules])[which]
+    firsts = blocks[:, 0].astype(np.float64)
+    ends = np.column_stack((firsts, firsts + blocks[:, 1] - 1))
+    nodes = (firsts[:, None] + offsets).ravel()
+    block = np.repeat(np.arange(len(blocks)), GAUSS_POINTS)
+    return nodes, weights.ravel(), block, block_owner, ends, log_norms
+
+
+#: Gauss nodes are evaluated this many at a time, so that the (nodes × 9) temporaries stay in cache.
+_CHUNK = 1 << 14
+
+
+def _chunked_values(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_batch_values` over consecutive chunks of ``lags`` (element by element, so the same values)."""
+    values, errors = np.empty(len(lags)), np.empty(len(lags))
+    for start in range(0, len(lags), _CHUNK):
+        part = slice(start, start + _CHUNK)
+        values[part], errors[part] = _batch_values(pairs, lag_model, owner[part], lags[part])
+    return values, errors
+
+
+def _block_sums(
+    pairs: _Pairs, lag_model: LagModel, layout: tuple[np.ndarray, ...]
+) -> tuple[np.ndarray, np.ndarray]:
+    """(Σ over the Gauss blocks of N c², the blocks' error bound) of each pair (module text)."""
+    size = len(pairs.m_i)
+    if not layout:
+        return np.zeros(size), np.zeros(size)
+    nodes, weights, block, block_owner, ends, log_norms = layout
+    owner = block_owner[block]
+    values, errors = _chunked_values(pairs, lag_model, owner, nodes)
+    weighted = weights * pairs.count(owner, nodes)
+    total = np.bincount(owner, weighted * (values * values), minlength=size)
+    bound = np.bincount(owner, weighted * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
+    derivative = _derivative_bounds(pairs, lag_model, block_owner, ends)
+    square_sums = np.bincount(block, weights * values * values, minlength=len(block_owner))
+    largest = np.maximum(pairs.count(block_owner, ends[:, 0]), pairs.count(block_owner, ends[:, 1]))
+    norms = np.exp(log_norms)
+    quadrature = derivative * largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
+    return total, bound + np.bincount(block_owner, quadrature, minlength=size)
+
+
 def counted_square_sums(
     lag_model: LagModel, pairs: Sequence[tuple[int, int, int, int]]
 ) -> list[tuple[float, float]]:
-    """:func:`counted_square_sum` of every (m_i, m_j, K_i, K_j) in ``pairs``, with H evaluated once on
-    the union of the integer arguments that the pairs' exact lags need (octave pairs share most of
-    them: about one in thirty is distinct), then looked up; each value is the one the pair alone gives."""
-    firsts, lasts = [np.zeros(0, dtype=np.int64)], [np.zeros(0, dtype=np.int64)]
-    for m_i, m_j, K_i, K_j in pairs:
-        exact = _plan(m_i, m_j, K_i, K_j, lag_model.reach)[0]
-        first, last = _argument_runs(lag_model, _make_pair(m_i, m_j, K_i, K_j), exact.astype(np.float64))
-        firsts.append(first)
-        lasts.append(last)
-    first, last = np.concatenate(firsts), np.concatenate(lasts)
-    if len(first):
-        starts, ends = _merged_runs(first, last)
-        lengths = ends - starts + 1
-        offsets = np.concatenate(([0], np.cumsum(lengths)[:-1]))
-        keys = np.repeat(starts - offsets, lengths) + np.arange(int(lengths.sum()))
-        values = lag_model.fourth_sum(keys.astype(np.float64))
-        memo = (starts.astype(np.float64), ends.astype(np.float64), offsets.astype(np.float64), values)
-        lag_model = replace(lag_model, memo=memo)
-    return [counted_square_sum(lag_model, *pair) for pair in pairs]
+    """:func:`counted_square_sum` of every (m_i, m_j, K_i, K_j) in ``pairs``, all evaluated together (rows of
+    :class:`_Pairs`), with H tabulated once on the union of the integer arguments the exact lags need.
+    Every operation is element by element and each pair's sum is reduced in its own order, so each
+    value is, bit for bit, the one the pair alone gives."""
+    if not pairs:
+        return []
+    batch = _Pairs.of([_make_pair(*pair) for pair in pairs])
+    plans = [_plan(*pair, lag_model.reach) for pair in pairs]
+    lags = np.concatenate([exact for exact, _ in plans]).astype(np.float64)
+    owner = np.repeat(np.arange(len(pairs)), [len(exact) for exact, _ in plans])
+    values, errors = _batch_values(batch, lag_model, owner, lags, tabulated=True)
+    counts = batch.count(owner, lags)
+    total = np.bincount(owner, counts * (values * values), minlength=len(pairs))
+    bound = np.bincount(owner, counts * (errors * (2.0 * np.abs(values) + errors)), minlength=len(pairs))
+    block_total, block_bound = _block_sums(batch, lag_model, _block_layout(plans))
+    return list(zip((total + block_total).tolist(), (bound + block_bound).tolist(), strict=True))

@@ -52,6 +52,7 @@ from __future__ import annotations
 import functools
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -115,7 +116,7 @@ class TauCovariance:
 # --- the exact integer engine ---------------------------------------------------------------------
 
 
-def _cross_values(ramps: list[tuple[int, int]], delta: int) -> tuple[int, int]:
+def _cross_values(ramps: Sequence[tuple[int, int]], delta: int) -> tuple[int, int]:
     """(c_white, c_rrw) at δ for unit variances, exact integers."""
     white = rrw = 0
     for q, w in ramps:
@@ -132,7 +133,7 @@ def _pair_count(delta: int, K_i: int, K_j: int) -> int:
     return max(0, min(K_i - 1, K_j - 1 - delta) - max(0, -delta) + 1)
 
 
-def _piece_sums(ramps: list[tuple[int, int]], start: int, stop: int, K_i: int, K_j: int) -> np.ndarray:
+def _piece_sums(ramps: Sequence[tuple[int, int]], start: int, stop: int, K_i: int, K_j: int) -> np.ndarray:
     """Σ_{δ=start}^{stop−1} N c_a c_b for (a, b) = (W, W), (W, R), (R, R), exactly (one polynomial piece)."""
     length = stop - start
     points = min(length, 8)

@@ -2,6 +2,10 @@
 evaluator held to 1e-12 relative against 50-digit mpmath and against brute-force sums of γ_z, the finite
 (AR) fourth sum against exact Fractions.
 
+The even asymptotic series of the Gamma ratio (its coefficients against SymPy's own expansion, its
+values against mpmath) and the power-sum evaluation of Σ (Γ(j + d)/Γ(j))² against 40-digit sums over
+every j.
+
 Stated tolerance of the 1/f Allan variance evaluator: 1e-12 relative for every 0 < d < 1 (including
 d = ½ and its neighbourhood, where the closed form has a removable singularity) and m up to 10⁷.
 """
@@ -21,10 +25,15 @@ from carousel_theory import symbols
 from carousel_theory.increment_sums import (
     FLICKER_FOURTH_SUM,
     FLICKER_INCREMENT_AUTOCOVARIANCE,
+    LOG_RATIO_COEFFICIENTS,
+    LOG_RATIO_SLOPES,
+    SQUARE_SUM_HEAD,
     allan_variance_from_fourth_sum,
     finite_fourth_sum,
     flicker_allan_variance_closed,
+    flicker_fourth_sum,
     rising_factorial,
+    squared_rising_factorial_sum,
 )
 from carousel_theory.noise_model import increment_autocovariance
 
@@ -155,3 +164,74 @@ def test_allan_variance_from_the_fourth_sum_of_white_and_rate_random_walk_taps()
     np.testing.assert_allclose(white * sizes, 1.0, rtol=1e-14)
     rrw = allan_variance_from_fourth_sum(lambda x: finite_fourth_sum(np.array([1.0]), x), sizes)
     np.testing.assert_allclose(rrw, (2.0 * sizes**2 + 1) / (6.0 * sizes), rtol=1e-14)
+
+
+def test_log_ratio_coefficients_are_the_asymptotic_series_of_the_gamma_ratio():
+    # log Γ(w + (1+s)/2) − log Γ(w + (1−s)/2) − s log w, expanded by SymPy at w = ∞ (an independent
+    # route through the Stirling series of each log Γ), has only even powers, with the coefficients e_k.
+    s, u = sp.Symbol("s", positive=True), sp.Symbol("u", positive=True)  # u = 1/w
+    difference = sp.loggamma(1 / u + (1 + s) / 2) - sp.loggamma(1 / u + (1 - s) / 2) + s * sp.log(u)
+    series = sp.series(difference, u, 0, 9).removeO()
+    for k, coefficient in enumerate(LOG_RATIO_COEFFICIENTS[:4], start=1):
+        assert sp.simplify(series.coeff(u, 2 * k) - coefficient) == 0  # the same symbol s
+        assert sp.simplify(series.coeff(u, 2 * k - 1)) == 0
+    for coefficient, slope in zip(LOG_RATIO_COEFFICIENTS, LOG_RATIO_SLOPES, strict=True):
+        symbol = next(iter(coefficient.free_symbols))
+        assert sp.expand(coefficient - coefficient.subs(symbol, 2) - (symbol - 2) * slope) == 0
+
+
+@pytest.mark.parametrize("dps", [30, 50])
+@pytest.mark.parametrize("d", ["0.02", "0.3", "0.41", "0.4999999", "0.5", "0.5000001", "0.59", "0.98"])
+def test_flicker_fourth_sum_at_large_arguments_against_mpmath(d, dps):
+    # Beyond j = 16 the fourth sum comes from the even series; j not an integer (Gauss nodes), up to 10⁷.
+    order = float(d)
+    j = np.array([16.0, 16.5, 17.25, 31.75, 100.125, 1000.4, 12345.6, 3.3e6, 1.2e7])
+    got = flicker_fourth_sum(j - 2.0, order)
+    with mpmath.workdps(dps):
+        dm, half = mpmath.mpf(d), mpmath.mpf(1) / 2
+        scale = mpmath.gamma(3 - 2 * dm) / (mpmath.gamma(2 - dm) * mpmath.gamma(dm - 1))
+        scale /= 16 * (dm - 1) * dm * (dm + half)
+        for argument, value in zip(j.tolist(), got, strict=True):
+            x = mpmath.mpf(argument)
+
+            def ratio(e: mpmath.mpf, x: mpmath.mpf = x) -> mpmath.mpf:
+                return mpmath.gamma(x + 1 + e) / mpmath.gamma(x - e)
+
+            if abs(order - 0.5) > 0.1:
+                exact = scale * ratio(dm) / (dm - half)
+            elif dm == half:  # the removable singularity: the derivative in d
+                exact = scale * mpmath.diff(ratio, half)
+            else:  # the d = ½ quadratic j² − ¼ removed, as the evaluator does
+                exact = scale * (ratio(dm) - (x * x - mpmath.mpf(1) / 4)) / (dm - half)
+            assert abs(value - float(exact)) <= TOLERANCE * abs(float(exact))
+
+
+@pytest.mark.parametrize("d", ["0.02", "0.25", "0.5", "0.5000001", "0.77", "0.98"])
+@pytest.mark.parametrize(
+    "count", [1, SQUARE_SUM_HEAD - 1, SQUARE_SUM_HEAD, SQUARE_SUM_HEAD + 1, 5_000, 250_001]
+)
+def test_squared_rising_factorial_sum_against_every_term_summed(d, count):
+    # Reference: Σ_j (Γ(j + d)/Γ(j))² over every j, each term from mpmath at 40 digits (the product
+    # recurrence F(j + 1) = F(j)(j + d)/j), summed exactly by fsum.
+    got = squared_rising_factorial_sum(float(d), count)
+    with mpmath.workdps(40):
+        step = mpmath.mpf(float(d))
+        term, terms = mpmath.gamma(1 + step), []
+        for j in range(1, count + 1):
+            terms.append(term * term)
+            term *= (j + step) / j
+        exact = mpmath.fsum(terms)
+    assert abs(got - float(exact)) <= 1e-13 * float(exact)
+
+
+@pytest.mark.parametrize(("k", "largest"), [(4, sp.Rational(1, 4)), (9, sp.Rational(98, 100))])
+def test_first_omitted_coefficients_of_the_even_series_are_bounded(k, largest):
+    # The truncation statement of the evaluator: |e_4(s)| ≤ ¼ and |e_9(s)| ≤ 0.98 for s = 1 + 2d ∈ [1, 3],
+    # by the exact extrema of the polynomial (end points and real roots of its derivative).
+    s = sp.Symbol("s", positive=True)
+    coefficient = sp.Poly(sp.expand(-2 * sp.bernoulli(2 * k + 1, (1 + s) / 2) / (2 * k * (2 * k + 1))), s)
+    candidates = [sp.Integer(1), sp.Integer(3)]
+    candidates += [root for root in sp.real_roots(coefficient.diff(s)) if 1 <= root <= 3]
+    assert max(abs(coefficient.eval(point)).evalf(30) for point in candidates) <= largest
+    if k == 4:
+        assert coefficient == sp.Poly(sp.expand(LOG_RATIO_COEFFICIENTS[3]), s)

@@ -163,6 +163,29 @@ def test_lag_quadrature_against_every_lag_summed(name, sizes, monkeypatch):
     np.testing.assert_array_equal(decreasing.covariance, result.covariance[::-1, ::-1])
 
 
+@pytest.mark.parametrize("d", [0.2, 0.5, 0.85])
+def test_batched_quadrature_of_a_full_model_against_the_every_lag_engine(d, monkeypatch):
+    # White + RRW + 1/f + AR(2) at 24 000 samples, octave τ and one odd size: the quadrature evaluates all
+    # 78 pairs together (rows with an owner index, H tabulated once). The reference is the short-record
+    # engine: c by moving sums of γ_z at every lag, summed over every lag — no fourth sum, no blocks, no
+    # batching. A pair whose rows were mixed up would be off by far more than the bound. Rounding margin as
+    # in the test above: 1e-10 of √(C_ii C_jj) (reached, near 5e-11, only by the widest ratio m_j/m_i =
+    # 1024 at d ≥ 0.85, where the nine-term sum loses about (m_j/m_i)² ulps and the reference's moving
+    # sums of a slowly decaying γ_z lose as much).
+    variances = {"white_variance": 0.5, "rrw_variance": 1e-6, "flicker_variance": 1.0, "ar_variance": 0.3}
+    model = NoiseModel(sample_rate=1.0, flicker_d=d, ar_coefficients=(0.5, 0.2), **variances)
+    sizes = np.array([1, 2, 3, 4, 8, 16, 32, 64, 128, 256, 512, 1024])
+    length = 24_000
+    reference = allan_estimate_covariance(model, sizes, length)
+    assert np.all(reference.truncation_bound == 0)  # below EVERY_LAG_LENGTH: every lag, exactly
+    monkeypatch.setattr(tau_covariance, "EVERY_LAG_LENGTH", 0)
+    result = allan_estimate_covariance(model, sizes, length)
+    scale = np.sqrt(np.outer(np.diag(reference.covariance), np.diag(reference.covariance)))
+    error = np.abs(result.covariance - reference.covariance)
+    assert np.all(error <= result.truncation_bound + 1e-10 * scale)
+    assert np.all(result.truncation_bound <= 1e-11 * scale)
+
+
 def test_short_flicker_record_is_summed_over_every_lag():
     model = NoiseModel(sample_rate=1.0, flicker_variance=1.0, flicker_d=0.7)
     sizes = np.array([1, 2, 4])
