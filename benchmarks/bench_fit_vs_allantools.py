@@ -1,14 +1,17 @@
 """Noise-model fit speed against allantools' overlapping Allan deviation, same axis, same run; and the
 τ-covariance against the dense reference.
 
-Usage: ``python benchmarks/bench_fit_vs_allantools.py [--sizes 1000000 10000000] [--models white,rrw ...]``
+Usage: ``python benchmarks/bench_fit_vs_allantools.py [--sizes 1000000 10000000] [--models white,rrw ...]
+[--breakdown]``
 
 For each size a seeded axis of white + rate random walk + 1/f (d = 0.5) + first-order Gauss–Markov noise
 at 100 Hz is drawn (:func:`carousel_theory.simulate.sample_noise`). Timed, once each, in this process:
 ``allantools.oadev`` at octave τ (``data_type="freq"``) and ``carousel_theory.fitting.fit_noise_model``
 with each requested component set (the fit includes its own overlapping Allan variance). Prints the
 wall times, the ratio fit / allantools (the target is ≤ 3), and the same ratio of CPU times of this
-process (steadier on a shared machine).
+process (steadier on a shared machine). With ``--breakdown`` each fit is run once more and its CPU time is
+split into the τ-covariances (planning of the pairs, Gauss blocks, exact lags and the rest) and
+everything else.
 
 Then, at ``--dense-size`` samples, the covariance of the Allan variance estimates across octave τ from
 :func:`carousel_theory.tau_covariance.allan_estimate_covariance` is compared with the dense O(n)-per-pair
@@ -22,12 +25,14 @@ summed over every lag of the record (the tests hold it to dense Toeplitz algebra
 from __future__ import annotations
 
 import argparse
+import contextlib
 import time
+from collections.abc import Iterator
 
 import allantools
 import numpy as np
 
-from carousel_theory import tau_covariance
+from carousel_theory import fitting, lag_quadrature, tau_covariance
 from carousel_theory.allan import allan_covariance
 from carousel_theory.fitting import fit_noise_model
 from carousel_theory.lag_quadrature import LagModel, _Pair, _values, ramp_positions
@@ -115,6 +120,45 @@ def _every_lag_check(size: int) -> None:
     )
 
 
+@contextlib.contextmanager
+def _clocked(module: object, name: str, spent: dict[str, float]) -> Iterator[None]:
+    """Replace ``module.name`` by a wrapper adding its CPU time to ``spent[name]`` (restored on exit)."""
+    original = getattr(module, name)
+
+    def wrapper(*args, **kwargs):
+        start = time.process_time()
+        try:
+            return original(*args, **kwargs)
+        finally:
+            spent[name] = spent.get(name, 0.0) + time.process_time() - start
+
+    setattr(module, name, wrapper)
+    try:
+        yield
+    finally:
+        setattr(module, name, original)
+
+
+def _breakdown(y: np.ndarray, components: tuple[str, ...]) -> None:
+    """Where the fit's CPU time goes (a second fit of the same axis, the lag plans' cache emptied first so
+    that planning is counted as on a first call; modules already imported): the τ-covariances, and within
+    them the planning of the pairs, the Gauss blocks, and the exact lags with the rest."""
+    lag_quadrature._plan.cache_clear()
+    spent: dict[str, float] = {}
+    with contextlib.ExitStack() as stack:
+        stack.enter_context(_clocked(fitting, "allan_estimate_covariance", spent))
+        stack.enter_context(_clocked(lag_quadrature, "_plan", spent))
+        stack.enter_context(_clocked(lag_quadrature, "_block_sums", spent))
+        total = _timed_both(lambda: fit_noise_model(y, 100.0, components))[1]
+    covariance = spent.get("allan_estimate_covariance", 0.0)
+    plan, blocks = spent.get("_plan", 0.0), spent.get("_block_sums", 0.0)
+    print(
+        f"{'':>10} {'CPU breakdown':>22}: fit {total:.3f} s = τ-covariances {covariance:.3f} s (planning "
+        f"{plan:.3f}, Gauss blocks {blocks:.3f}, exact lags and the rest {covariance - plan - blocks:.3f}) "
+        f"+ everything else {total - covariance:.3f} s"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[1_000_000, 10_000_000])
@@ -122,6 +166,9 @@ def main() -> None:
         "--models", nargs="+", default=["white,rrw", "white,rrw,flicker,ar"], help="component sets to fit"
     )
     parser.add_argument("--dense-size", type=int, default=100_000)
+    parser.add_argument(
+        "--breakdown", action="store_true", help="also show where each fit's CPU time goes (one more fit)"
+    )
     args = parser.parse_args()
     rng = np.random.default_rng(2026)
     print(
@@ -138,6 +185,8 @@ def main() -> None:
             fit, fit_cpu = _timed_both(lambda c=components, y=y: fit_noise_model(y, 100.0, c))
             ratios = f"{fit / peer:>15.2f} {fit_cpu / peer_cpu:>19.2f}"
             print(f"{size:>10} {text:>22} {fit:>9.2f} {peer:>15.2f} {ratios}")
+            if args.breakdown:
+                _breakdown(y, components)
     _dense_check(args.dense_size, rng)
     _every_lag_check(args.dense_size)
 

@@ -285,8 +285,10 @@ def _plan(m_i: int, m_j: int, K_i: int, K_j: int, reach: int) -> tuple[np.ndarra
             blocks += _segment_blocks(first, last, left, right)
     exact += [(f, f + n - 1) for f, n in blocks if n <= 2 * GAUSS_POINTS]
     large = np.array([(f, n) for f, n in blocks if n > 2 * GAUSS_POINTS], dtype=np.int64).reshape(-1, 2)
-    ranges = [np.arange(first, last + 1) for first, last in exact]
-    lags = np.unique(np.concatenate(ranges)) if ranges else np.zeros(0, dtype=np.int64)
+    # The segments between cuts are disjoint and the blocks partition theirs, so the exact ranges are
+    # disjoint: sorted by their first lag, they concatenate into the sorted lags.
+    ranges = [np.arange(first, last + 1, dtype=np.int64) for first, last in sorted(exact)]
+    lags = np.concatenate(ranges) if ranges else np.zeros(0, dtype=np.int64)
     lags.setflags(write=False)
     large.setflags(write=False)
     return lags, large
