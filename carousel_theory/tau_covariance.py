@@ -34,8 +34,9 @@ Exact closed form (white, rate random walk, quantization; overlapping estimator)
     relative).
 
 Non-overlapping estimator (1/f, AR)
-    c_ij(δ) on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is correlated with
-    the triangle g_j once per τ_j, and g_i = B_{m_i}⋆B_{m_i} is applied to that, each as two moving sums.
+    c_ij(δ) on a window of lags, O(m_i + m_j + T) time and one array of that length per pair, T the reach
+    of γ_z: γ_z is correlated with the triangle g_j and then with g_i = B_{m_i}⋆B_{m_i}, each as two
+    moving sums in place, and only every m_i-th offset enters the sum.
     T: for AR, the lag beyond which the geometric envelope is below
     :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j). The 1/f
     tail beyond the window is bounded: for k ≥ 1, γ_z(k) < 0 and |γ_z(k)| decreases, with
