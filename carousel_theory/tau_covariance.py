@@ -322,11 +322,13 @@ def _lag_sum(
     memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int, estimator: str
 ) -> tuple[float, float]:
     """(Σ N c², bound on the neglected tail) by the finite lag sum over a window of δ (non-overlapping):
-    δ = m_j b − m_i a = m_i t (m_i divides m_j), summed in blocks of t."""
+    δ = m_j b − m_i a = m_i t (m_i divides m_j), summed in blocks of t. On the diagonal N c² is even in
+    δ (stationary increments), so only δ ≥ 0 is computed, the terms at δ > 0 counted twice."""
     reach = _lag_window(memory.model, m_i, m_j)
     low, high = _lag_range(memory.model, m_i, m_j, K_i, K_j, estimator)
     ratio = m_j // m_i
-    t_first, t_last = -(-low // m_i), high // m_i
+    diagonal = m_i == m_j and K_i == K_j
+    t_first, t_last = 0 if diagonal else -(-low // m_i), high // m_i
     c = memory.cross_covariance(m_i, m_j, t_first * m_i, t_last * m_i)[::m_i]
     total = 0.0
     for start in range(t_first, t_last + 1, _MOVING_BLOCK):
@@ -334,6 +336,8 @@ def _lag_sum(
         first = np.maximum(0, -((-t) // ratio))
         last = np.minimum(K_j - 1, (K_i - 1 + t) // ratio)
         counts = np.maximum(last - first + 1, 0).astype(np.float64)
+        if diagonal:
+            counts[t > 0] *= 2.0
         part = c[start - t_first : start - t_first + len(t)]
         total += float(np.einsum("i,i,i->", counts, part, part))
     bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
