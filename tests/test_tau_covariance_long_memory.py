@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
-from scipy.linalg import toeplitz
+from test_tau_covariance import _dense_toeplitz
 
 from carousel_theory import symbols, tau_covariance
 from carousel_theory.increment_sums import FLICKER_INCREMENT_AUTOCOVARIANCE
@@ -50,25 +50,6 @@ def test_twice_moving_sum_is_the_triangle(m, monkeypatch):
     np.testing.assert_array_equal(_twice_moving_sum(buffer, m)[1:], expected)
 
 
-def _dense_non_overlapping(model: NoiseModel, sizes: np.ndarray, length: int) -> np.ndarray:
-    """Cov(σ̂²_i, σ̂²_j) = 2 Σ (A Σ_z Bᵀ)² / (4 m_i² m_j² K_i K_j) with the difference rows written out."""
-    covariance_z = toeplitz(model.increment_autocovariance(length - 1))
-    rows = []
-    for m in sizes.tolist():
-        count = length // m - 1
-        triangle = np.convolve(np.ones(m), np.ones(m))
-        matrix = np.zeros((count, length - 1))
-        for row, start in enumerate(range(0, count * m, m)):
-            matrix[row, start : start + 2 * m - 1] = triangle
-        rows.append((matrix, m, count))
-    result = np.empty((len(sizes), len(sizes)))
-    for i, (A, m_i, K_i) in enumerate(rows):
-        for j, (B, m_j, K_j) in enumerate(rows):
-            cross = A @ covariance_z @ B.T
-            result[i, j] = 2 * np.sum(cross * cross) / (4.0 * m_i**2 * m_j**2 * K_i * K_j)
-    return result
-
-
 @pytest.mark.parametrize("block", [2, 5, 1 << 18])
 @pytest.mark.parametrize("name", sorted(MODELS))
 def test_non_overlapping_against_dense_toeplitz(name, block, monkeypatch):
@@ -77,7 +58,7 @@ def test_non_overlapping_against_dense_toeplitz(name, block, monkeypatch):
     sizes = np.array([1, 2, 4, 8, 16, 32])
     length = 200
     result = allan_estimate_covariance(MODELS[name], sizes, length, estimator="non-overlapping")
-    dense = _dense_non_overlapping(MODELS[name], sizes, length)
+    dense = _dense_toeplitz(MODELS[name], sizes, length, "non-overlapping")
     assert np.all(np.abs(result.covariance - dense) <= result.truncation_bound + 1e-11 * np.abs(dense))
     if "flicker" not in name:
         assert np.all(result.truncation_bound == 0)
@@ -91,20 +72,7 @@ def test_every_lag_sums_of_a_short_record_against_dense_toeplitz(name, monkeypat
     sizes = np.array([1, 3, 9])
     length = 150
     result = allan_estimate_covariance(MODELS[name], sizes, length, estimator="overlapping")
-    covariance_z = toeplitz(MODELS[name].increment_autocovariance(length - 1))
-    dense = np.empty((3, 3))
-    rows = []
-    for m in sizes.tolist():
-        triangle = np.convolve(np.ones(m), np.ones(m))
-        count = length - 2 * m + 1
-        matrix = np.zeros((count, length - 1))
-        for start in range(count):
-            matrix[start, start : start + 2 * m - 1] = triangle
-        rows.append((matrix, m, count))
-    for i, (A, m_i, K_i) in enumerate(rows):
-        for j, (B, m_j, K_j) in enumerate(rows):
-            cross = A @ covariance_z @ B.T
-            dense[i, j] = 2 * np.sum(cross * cross) / (4.0 * m_i**2 * m_j**2 * K_i * K_j)
+    dense = _dense_toeplitz(MODELS[name], sizes, length, "overlapping")
     np.testing.assert_allclose(result.covariance, dense, rtol=1e-11)
 
 
