@@ -8,6 +8,7 @@ and a :class:`ModelSpec` (the stochastic terms plus the effects fitted so far).
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -62,21 +63,21 @@ class ModelSpec:
 
 class Residuals(Mapping[str, np.ndarray]):
     """``cleaned[axis]`` minus the axis's fitted bias, made when asked: a long recording does not hold a
-    second record-length array per axis. The array last asked for is kept (read-only) for the next
-    question about the same axis, which is how the detectors ask, one axis at a time."""
+    second record-length array per axis. The array last made is handed out again (read-only) while its
+    user still holds it, and freed when nobody does."""
 
     def __init__(self, cleaned: Mapping[str, np.ndarray], biases: Mapping[str, float]) -> None:
         self._cleaned = cleaned
         self._biases = dict(biases)
-        self._last: tuple[str, np.ndarray] | None = None
+        self._last: tuple[str, weakref.ref[np.ndarray]] | None = None
 
     def __getitem__(self, axis: str) -> np.ndarray:
-        if self._last is not None and self._last[0] == axis:
-            return self._last[1]
-        self._last = None  # released before the next one is made
+        held = self._last[1]() if self._last is not None and self._last[0] == axis else None
+        if held is not None:
+            return held
         residual = np.subtract(self._cleaned[axis], self._biases[axis], dtype=np.float64)
         residual.setflags(write=False)
-        self._last = (axis, residual)
+        self._last = (axis, weakref.ref(residual))
         return residual
 
     def __iter__(self) -> Iterator[str]:
