@@ -62,7 +62,7 @@ import sympy as sp
 from carousel_theory import symbols
 from carousel_theory.increment_sums import flicker_normalisation, rising_factorial
 from carousel_theory.lag_quadrature import LagModel, counted_square_sum, counted_square_sums, ramp_positions
-from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel
+from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
 
 __all__ = [
     "FLICKER_REACH",
@@ -265,11 +265,18 @@ class _LongMemory:
             first, last = _lag_range(model, m_i, m_j, K_i, K_j, estimator)
             extent = max(extent, 2 * m_i - 2 - first + 1, last + 2 * m_j - 2 + 1)
         terms = model.terms()
-        if "flicker" in terms:
-            lags = max(extent, length)
-        else:  # γ_z vanishes beyond the AR envelope's reach (the values below it do not depend on lags)
-            lags = min(extent, 4 + (_ar_reach(tuple(model.ar_coefficients)) if "ar" in terms else 0))
-        self.gamma = model.increment_autocovariance(lags)
+        # The other terms' γ_z vanish beyond the AR envelope's reach (values below do not depend on lags).
+        finite = 4 + (_ar_reach(tuple(model.ar_coefficients)) if "ar" in terms else 0)
+        if "flicker" not in terms:
+            self.gamma = model.increment_autocovariance(min(extent, finite))
+            return
+        # σ_f² γ_f, then the model's whole sum where the other terms reach: the same values as
+        # model.increment_autocovariance, without its temporaries of the record's length.
+        lags = max(extent, length)
+        self.gamma = increment_autocovariance("flicker", lags, model.flicker_d)
+        self.gamma *= terms["flicker"]
+        head = min(finite, lags)
+        self.gamma[:head] = model.increment_autocovariance(head)
 
     def _window(self, low: int, high: int) -> np.ndarray:
         """γ_z(|x|) for x = low … high behind one free slot (zero beyond the lags held)."""

@@ -89,3 +89,30 @@ def test_flicker_tail_bound_uses_the_increment_autocovariance(d):
     expected = 2.0 * gamma**2 * (1.0 + (lag + 2.0 - float(d)) / (5.0 - 4.0 * float(d)))
     assert abs(bound - expected) <= 1e-12 * expected
     assert bound > 0
+
+
+@pytest.mark.parametrize(
+    "model",
+    [
+        *MODELS.values(),
+        NoiseModel(
+            sample_rate=2.0,
+            flicker_variance=0.7,
+            flicker_d=0.6,
+            white_variance=1.5,
+            rrw_variance=0.01,
+            quantization=0.05,
+            ar_variance=0.4,
+            ar_coefficients=(0.9, -0.1),
+        ),
+    ],
+    ids=[*MODELS, "every-term"],
+)
+def test_held_increment_autocovariance_is_the_models(model):
+    # Built term by term to spare record-length temporaries; the values must be the model's, bit for bit.
+    length = 3000
+    memory = tau_covariance._LongMemory(model, [(8, 8, 374, 374)], "non-overlapping", length)
+    held = len(memory.gamma)
+    expected = model.increment_autocovariance(max(held, length))
+    np.testing.assert_array_equal(memory.gamma, expected[:held])
+    assert np.all(expected[held:] == 0)  # what is not held is zero
