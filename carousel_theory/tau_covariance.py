@@ -34,8 +34,9 @@ Exact closed form (white, rate random walk, quantization; overlapping estimator)
     relative).
 
 Non-overlapping estimator (1/f, AR)
-    c_ij(δ) on a window of lags, O(m_i + m_j + T) per pair, T the reach of γ_z: γ_z is correlated with
-    the triangle g_j once per τ_j, and g_i = B_{m_i}⋆B_{m_i} is applied to that, each as two moving sums.
+    c_ij(δ) on a window of lags, O(m_i + m_j + T) time and one array of that length per pair, T the reach
+    of γ_z: γ_z is correlated with the triangle g_j and then with g_i = B_{m_i}⋆B_{m_i}, each as two
+    moving sums in place, and only every m_i-th offset enters the sum.
     T: for AR, the lag beyond which the geometric envelope is below
     :data:`carousel_theory.noise_model.AR_TRUNCATION`; for 1/f, T = ``FLICKER_REACH``·(m_i + m_j). The 1/f
     tail beyond the window is bounded: for k ≥ 1, γ_z(k) < 0 and |γ_z(k)| decreases, with
@@ -60,6 +61,7 @@ import numpy as np
 import sympy as sp
 
 from carousel_theory import symbols
+from carousel_theory.increment_sums import flicker_normalisation, rising_factorial
 from carousel_theory.lag_quadrature import LagModel, counted_square_sum, counted_square_sums, ramp_positions
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
 
@@ -229,86 +231,125 @@ def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, cou
         return 0.0
     d = float(model.flicker_d)
     V = max(1, inner)
-    gamma_V = abs(float(model.flicker_variance * memory.flicker_gamma[V]))
+    # γ_z(V) of the unit 1/f term, FLICKER_INCREMENT_AUTOCOVARIANCE = C_d / (V + d − 1)^(3 − 2d) (rising).
+    unit_gamma = flicker_normalisation(d) / float(rising_factorial(np.array([V + d - 1.0]), 3.0 - 2.0 * d)[0])
+    gamma_V = abs(float(model.flicker_variance) * unit_gamma)
     tail = gamma_V**2 * (1.0 + (V + 2.0 - d) / (5.0 - 4.0 * d))
     return 2.0 * count * (float(m_i) ** 2 * float(m_j) ** 2) ** 2 * tail
 
 
+def _lag_range(model: NoiseModel, m_i: int, m_j: int, K_i: int, K_j: int, estimator: str) -> tuple[int, int]:
+    """The offsets δ = first … last whose c_ij a lag sum needs: every offset of the record for the
+    overlapping estimator (short records), else the window of the finite lag sum (module text)."""
+    if estimator == "overlapping":
+        return -(K_i - 1), K_j - 1
+    reach = _lag_window(model, m_i, m_j)
+    return max(-(K_i - 1) * m_i, -2 * m_j - reach), min((K_j - 1) * m_j, 2 * m_i + reach)
+
+
 class _LongMemory:
-    """c_ij(δ) = Σ_k g_i[k] A_j(δ − k) with A_j = γ_z correlated with g_j once per j, and g_i,
-    the triangle B_{m_i}⋆B_{m_i}, applied as two moving sums (cumulative sums), for A_j as for each pair."""
+    """c_ij(δ) = Σ_u g_i[u] A_j(δ − 2m_i + 2 + u) with A_j(x) = Σ_u g_j[u] γ_z(x + u), g the triangle
+    B_m⋆B_m: each triangle applied as two moving sums (cumulative sums) in one buffer holding γ_z over
+    the lags the pair's offsets reach, so that a pair costs one array of O(last − first + m_i + m_j).
 
-    def __init__(self, model: NoiseModel, sizes: np.ndarray, length: int, *, every_lag: bool = False) -> None:
+    γ_z is held once: up to its last non-zero lag for white, rate random walk, quantization and AR terms,
+    and for 1/f up to the record length, which bounds every lag a pair of ``pairs`` (m_i, m_j, K_i, K_j)
+    reaches (the same length for every fit of a record, so that the 1/f autocovariance is computed once).
+    """
+
+    def __init__(
+        self, model: NoiseModel, pairs: list[tuple[int, int, int, int]], estimator: str, length: int
+    ) -> None:
         self.model = model
-        self.length = int(length)
-        largest = int(np.max(sizes))
-        self.reach = {int(m): length + 8 if every_lag else _lag_window(model, int(m), int(m)) for m in sizes}
-        # Lags used: |δ| ≤ length + 2·largest in _prepare, and V = reach + 3 in the 1/f tail bound.
-        widest = max(self.reach.values())
-        span = min(8 * largest + widest + 8, max(self.length + 2 * largest + 2, widest + 4))
-        self.gamma = model.increment_autocovariance(span)
-        flicker = "flicker" in model.terms()
-        self.flicker_gamma = increment_autocovariance("flicker", span if flicker else 1, model.flicker_d)
-        self.j: int | None = None
-        self.low = 0
-        self.correlated = np.zeros(0)
-
-    def _prepare(self, m_j: int) -> None:
-        """A_j(x) for x from low = −4m_j − reach_jj to 2m_j + reach_jj."""
-        if self.j == m_j:
+        extent = 1
+        for m_i, m_j, K_i, K_j in pairs:
+            first, last = _lag_range(model, m_i, m_j, K_i, K_j, estimator)
+            extent = max(extent, 2 * m_i - 2 - first + 1, last + 2 * m_j - 2 + 1)
+        terms = model.terms()
+        # The other terms' γ_z vanish beyond the AR envelope's reach (values below do not depend on lags).
+        finite = 4 + (_ar_reach(tuple(model.ar_coefficients)) if "ar" in terms else 0)
+        if "flicker" not in terms:
+            self.gamma = model.increment_autocovariance(min(extent, finite))
             return
-        reach = self.reach[m_j]
-        # No offset δ between two differences exceeds the record; A_j is needed down to δ − 2m_i + 2.
-        self.low = max(-4 * m_j - reach, -self.length - 2 * m_j)
-        high = min(2 * m_j + reach, self.length)
-        end = high + 2 * m_j - 1  # γ_z at |x| for x = low … end − 1, as two slices (γ_z is even)
-        negative = self.gamma[-self.low : 0 : -1] if self.low < 0 else self.gamma[:0]
-        window = np.concatenate((negative, self.gamma[max(self.low, 0) : end]))
-        self.correlated = _twice_moving_sum(window, m_j)  # γ_z ⋆ g_j, g_j = B_{m_j} ⋆ B_{m_j}
-        self.j = m_j
+        # σ_f² γ_f, then the model's whole sum where the other terms reach: the same values as
+        # model.increment_autocovariance, without its temporaries of the record's length.
+        lags = max(extent, length)
+        self.gamma = increment_autocovariance("flicker", lags, model.flicker_d)
+        self.gamma *= terms["flicker"]
+        head = min(finite, lags)
+        self.gamma[:head] = model.increment_autocovariance(head)
+
+    def _window(self, low: int, high: int) -> np.ndarray:
+        """γ_z(|x|) for x = low … high behind one free slot (zero beyond the lags held)."""
+        buffer = np.zeros(high - low + 2)
+        held = len(self.gamma)
+        if low < 0:  # x = start … stop (negative), lags −start … −stop, in decreasing order
+            start, stop = max(low, 1 - held), min(high, -1)
+            if start <= stop:
+                buffer[1 + start - low : 2 + stop - low] = self.gamma[-start : -stop - 1 : -1]
+        start, stop = max(low, 0), min(high, held - 1)
+        if start <= stop:
+            buffer[1 + start - low : 2 + stop - low] = self.gamma[start : stop + 1]
+        return buffer
 
     def cross_covariance(self, m_i: int, m_j: int, first: int, last: int) -> np.ndarray:
-        """c_ij(δ) for δ = first … last (inside the window prepared for m_j)."""
-        self._prepare(m_j)
-        start = first - 2 * m_i + 2 - self.low  # A_j from δ − (2m_i − 2)
-        return _twice_moving_sum(self.correlated[start : last - self.low + 1], m_i)
+        """c_ij(δ) for δ = first … last."""
+        buffer = self._window(first - 2 * m_i + 2, last + 2 * m_j - 2)
+        correlated = _twice_moving_sum(buffer, m_j)  # A_j at x = first − 2m_i + 2 … last, γ_z ⋆ g_j
+        return _twice_moving_sum(correlated, m_i)[1:]  # c_ij at δ = first … last
+
+
+#: Entries per block of the in-place moving difference (bounds the copy NumPy makes of an overlapping input).
+_MOVING_BLOCK = 1 << 18
+
+
+def _moving_sum_in_place(values: np.ndarray, m: int) -> np.ndarray:
+    """Σ_{l=k}^{k+m−1} v[l] for k = 0 … len(v) − m, v = values[1:], written over ``values``; returns the
+    sums behind one free slot (a view of ``values``). values[0] is a free slot: it becomes the 0 that
+    starts the cumulative sum C, and each sum C[k+m] − C[k] is stored at k + m, from the top in blocks
+    (an entry is overwritten only after every difference that reads it)."""
+    values[0] = 0.0
+    np.cumsum(values, out=values)
+    top = len(values)
+    while top > m:
+        bottom = max(m, top - _MOVING_BLOCK)
+        values[bottom:top] -= values[bottom - m : top - m]
+        top = bottom
+    return values[m - 1 :]
 
 
 def _twice_moving_sum(values: np.ndarray, m: int) -> np.ndarray:
-    """The triangle g_m = B_m ⋆ B_m applied as two moving sums of length m (cumulative sums); g_1 = (1)."""
+    """The triangle g_m = B_m ⋆ B_m applied to values[1:] as two moving sums of length m, in place
+    (values[0] is a free slot, as the result's first entry is); g_1 = (1)."""
     if m == 1:
         return values
-    for _ in range(2):
-        cumulative = np.empty(len(values) + 1)
-        cumulative[0] = 0.0
-        np.cumsum(values, out=cumulative[1:])
-        values = cumulative[m:] - cumulative[:-m]
-    return values
+    return _moving_sum_in_place(_moving_sum_in_place(values, m), m)
 
 
 def _lag_sum(
     memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int, estimator: str
 ) -> tuple[float, float]:
-    """(Σ N c², bound on the neglected tail) by the finite lag sum over a window of δ."""
+    """(Σ N c², bound on the neglected tail) by the finite lag sum over a window of δ (non-overlapping):
+    δ = m_j b − m_i a = m_i t (m_i divides m_j), summed in blocks of t. On the diagonal N c² is even in
+    δ (stationary increments), so only δ ≥ 0 is computed, the terms at δ > 0 counted twice."""
     reach = _lag_window(memory.model, m_i, m_j)
-    spacing = 1 if estimator == "overlapping" else m_i
-    low = max(-(K_i - 1) * spacing, -2 * m_j - reach)
-    high = min((K_j - 1) * (1 if estimator == "overlapping" else m_j), 2 * m_i + reach)
-    if estimator == "overlapping":
-        deltas = np.arange(low, high + 1)
-        counts = np.minimum(K_i - 1, K_j - 1 - deltas) - np.maximum(0, -deltas) + 1
-    else:  # δ = m_j b − m_i a = m_i t when m_i divides m_j
-        ratio = m_j // m_i
-        t = np.arange(-(-low // m_i), high // m_i + 1)
-        deltas = t * m_i
+    low, high = _lag_range(memory.model, m_i, m_j, K_i, K_j, estimator)
+    ratio = m_j // m_i
+    diagonal = m_i == m_j and K_i == K_j
+    t_first, t_last = 0 if diagonal else -(-low // m_i), high // m_i
+    c = memory.cross_covariance(m_i, m_j, t_first * m_i, t_last * m_i)[::m_i]
+    total = 0.0
+    for start in range(t_first, t_last + 1, _MOVING_BLOCK):
+        t = np.arange(start, min(start + _MOVING_BLOCK, t_last + 1))
         first = np.maximum(0, -((-t) // ratio))
         last = np.minimum(K_j - 1, (K_i - 1 + t) // ratio)
-        counts = last - first + 1
-    counts = np.maximum(counts, 0).astype(np.float64)
-    dense = memory.cross_covariance(m_i, m_j, int(deltas[0]), int(deltas[-1]))
-    c = dense if estimator == "overlapping" else dense[deltas - deltas[0]]
+        counts = np.maximum(last - first + 1, 0).astype(np.float64)
+        if diagonal:
+            counts[t > 0] *= 2.0
+        part = c[start - t_first : start - t_first + len(t)]
+        total += float(np.einsum("i,i,i->", counts, part, part))
     bound = _flicker_tail_bound(memory, m_i, m_j, reach + 3, min(K_i, K_j)) if reach else 0.0
-    return float(np.einsum("i,i,i->", counts, c, c)), bound
+    return total, bound
 
 
 # --- public ---------------------------------------------------------------------------------------
@@ -351,7 +392,7 @@ def _pair_sum(
 
 
 def _engine(
-    model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
+    model: NoiseModel, arguments: list[tuple[int, int, int, int]], length: int, estimator: str
 ) -> LagModel | _LongMemory | None:
     """None (white, RRW, quantization: exact integers), every lag (short records), or the quadrature."""
     long_terms = any(name in model.terms() for name in ("flicker", "ar"))
@@ -359,15 +400,15 @@ def _engine(
         return None
     if estimator == "overlapping" and length > EVERY_LAG_LENGTH:
         return LagModel.of(model)
-    return _LongMemory(model, sizes, length, every_lag=estimator == "overlapping")
+    return _LongMemory(model, arguments, estimator, length)
 
 
 def _pair_sums(
     model: NoiseModel, sizes: np.ndarray, terms: np.ndarray, length: int, estimator: str, pairs: list
 ) -> list[tuple[float, float]]:
     """(Σ N c², error bound) of each (i, j) in ``pairs``; the lag quadrature takes them all at once."""
-    engine = _engine(model, sizes, length, estimator)
     arguments = [(int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])) for i, j in pairs]
+    engine = _engine(model, arguments, length, estimator)
     if isinstance(engine, LagModel):
         return counted_square_sums(engine, arguments)
     return [_pair_sum(model, engine, *pair, estimator) for pair in arguments]

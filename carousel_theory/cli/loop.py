@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
 from carousel_theory.cli._recording_options import add_recording_options, reader_keywords
 from carousel_theory.closed_loop import DEFAULT_ALPHA, run_loop, write_report
+from carousel_theory.closed_loop.preparation import default_axes
 from carousel_theory.closed_loop.report import REPORT_FILES
-from carousel_theory.data import load_recording
+from carousel_theory.data import Recording, load_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
 from carousel_theory.units import from_deg_per_hour_per_sqrt_hour, from_deg_per_sqrt_hour
@@ -119,6 +121,16 @@ def model_lines(result: Any, output: OutputUnits) -> list[str]:
     return lines
 
 
+def analysed_only(recording: Recording, axes: tuple[str, ...] | None) -> Recording:
+    """The recording without the gyro columns the loop does not analyse (a 12-hour recording at 1 kHz
+    would hold 346 MB per column for the whole run); unchanged when an axis asked for is missing, so
+    that the loop's own message names it."""
+    wanted = default_axes(recording) if axes is None else axes
+    if not set(wanted) <= set(recording.rates) or len(wanted) == len(recording.rates):
+        return recording
+    return replace(recording, rates={axis: recording.rates[axis] for axis in wanted})
+
+
 def run(args: argparse.Namespace) -> int:
     columns = None
     if args.column:
@@ -150,6 +162,7 @@ def run(args: argparse.Namespace) -> int:
         irregular="keep",
         **reader_keywords(args),
     )
+    recording = analysed_only(recording, axes)  # the other columns are freed before the loop runs
     result = run_loop(
         recording, samples_per_revolution=args.samples_per_revolution, axes=axes, alpha=args.alpha
     )

@@ -16,7 +16,7 @@ from carousel_theory.data import Recording
 from carousel_theory.effects import detect_quantization
 from carousel_theory.signal_checks import check_recording_signals
 
-__all__ = ["LoopInput", "prepare"]
+__all__ = ["LoopInput", "default_axes", "prepare"]
 
 
 @dataclass(frozen=True)
@@ -64,11 +64,14 @@ def _quantization_notes(recording: Recording, axes: Sequence[str] | None) -> lis
     return notes
 
 
+def default_axes(recording: Recording) -> tuple[str, ...]:
+    """The axes the loop analyses when none are named: ``wx`` and ``wy`` when present, else every axis."""
+    names = tuple(recording.rates)
+    return ("wx", "wy") if {"wx", "wy"} <= set(names) else names
+
+
 def _chosen_axes(recording: Recording, axes: Sequence[str] | None, N: int) -> tuple[str, ...]:
-    if axes is None:
-        names = tuple(recording.rates)
-        axes = ("wx", "wy") if {"wx", "wy"} <= set(names) else names
-    chosen = tuple(axes)
+    chosen = default_axes(recording) if axes is None else tuple(axes)
     missing = [a for a in chosen if a not in recording.rates]
     if not chosen or missing:
         raise ValueError(f"axes={chosen!r}: not in the recording, which has {sorted(recording.rates)}")

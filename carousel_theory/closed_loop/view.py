@@ -8,6 +8,8 @@ and a :class:`ModelSpec` (the stochastic terms plus the effects fitted so far).
 
 from __future__ import annotations
 
+import weakref
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -21,7 +23,14 @@ from carousel_theory.closed_loop.residual_model import (
 from carousel_theory.data import Recording
 from carousel_theory.signal_checks import check_noise_signal
 
-__all__ = ["FittedEffect", "ModelSpec", "ResidualView", "build_view", "local_median_replacement"]
+__all__ = [
+    "FittedEffect",
+    "ModelSpec",
+    "ResidualView",
+    "Residuals",
+    "build_view",
+    "local_median_replacement",
+]
 
 
 @dataclass(frozen=True)
@@ -52,12 +61,39 @@ class ModelSpec:
         return ModelSpec(terms, (*self.fitted, fitted))
 
 
+class Residuals(Mapping[str, np.ndarray]):
+    """``cleaned[axis]`` minus the axis's fitted bias, made when asked: a long recording does not hold a
+    second record-length array per axis. The array last made is handed out again (read-only) while its
+    user still holds it, and freed when nobody does."""
+
+    def __init__(self, cleaned: Mapping[str, np.ndarray], biases: Mapping[str, float]) -> None:
+        self._cleaned = cleaned
+        self._biases = dict(biases)
+        self._last: tuple[str, weakref.ref[np.ndarray]] | None = None
+
+    def __getitem__(self, axis: str) -> np.ndarray:
+        held = self._last[1]() if self._last is not None and self._last[0] == axis else None
+        if held is not None:
+            return held
+        residual = np.subtract(self._cleaned[axis], self._biases[axis], dtype=np.float64)
+        residual.setflags(write=False)
+        self._last = (axis, weakref.ref(residual))
+        return residual
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._biases)
+
+    def __len__(self) -> int:
+        return len(self._biases)
+
+
 @dataclass(frozen=True)
 class ResidualView:
     """The residual of each axis under one model.
 
     ``cleaned`` is the recording with the fitted effects removed; ``residuals`` is ``cleaned`` minus the
-    fitted bias; ``fits`` holds each axis's :class:`~carousel_theory.closed_loop.residual_model.ResidualFit`.
+    fitted bias (:class:`Residuals`, made per axis when asked); ``fits`` holds each axis's
+    :class:`~carousel_theory.closed_loop.residual_model.ResidualFit`.
     """
 
     axes: tuple[str, ...]
@@ -66,7 +102,7 @@ class ResidualView:
     temperature: np.ndarray | None
     spec: ModelSpec
     cleaned: dict[str, np.ndarray]
-    residuals: dict[str, np.ndarray]
+    residuals: Residuals = field(compare=False)
     fits: dict[str, ResidualFit]
     #: Fits of the same axes with other terms, made on demand (see linear_statistics.fit_with_terms).
     other_fits: dict[tuple[str, ModelTerms], ResidualFit] = field(
@@ -112,7 +148,7 @@ def build_view(recording: Recording, axes: tuple[str, ...], spec: ModelSpec) -> 
     for axis in axes:  # e.g. a column that is nothing but spikes on a constant
         check_noise_signal(cleaned[axis], f"{recording.source}: column {axis!r} once its effects are removed")
     fits = {axis: fit_residual_model(cleaned[axis], recording.sample_rate, spec.terms) for axis in axes}
-    residuals = {axis: cleaned[axis] - fits[axis].bias for axis in axes}
+    residuals = Residuals(cleaned, {axis: fits[axis].bias for axis in axes})
     return ResidualView(
         axes, recording.time, recording.sample_rate, recording.temperature, spec, cleaned, residuals, fits
     )
