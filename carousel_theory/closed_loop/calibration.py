@@ -38,6 +38,12 @@ rate of the iteration in which it was added.
   (1 − α'/10)^B ≈ 0.90.
 
 Each half runs at half the final test's rate (Bonferroni); the reported p is 2 min(p_short, p_long).
+
+**Shared by the 1/f detector.** The same sequential test (:func:`sequential_monte_carlo_p`) refers the
+1/f detector's nested-fit statistic to replicates of the whole Allan-variance vector of the fitted model
+(:class:`AllanVarianceSampler`: the long τ exactly from block sums, the short τ Gaussian given them).
+Every bootstrap draws from a generator seeded with BOOTSTRAP_SEED (and a stream number per test), so a
+recording always gets the same decisions.
 """
 
 from __future__ import annotations
