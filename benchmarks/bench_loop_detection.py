@@ -8,12 +8,16 @@
 3. **Pairs that mask each other**, at 1 h: a warm-up transient under 1/f noise, a temperature effect under
    a strong rate random walk; each effect alone at the same amplitude for reference.
 4. **Outside the catalogue**: a sawtooth must give ``unexplained``, never a catalogue name.
+5. **Single decisions** on clean records: the rejection rate of each trend detector and of the 1/f
+   detector (bootstrap and former χ²₁ / F references) at a nominal level of 0.05, the coverage of the
+   trend statistics' variance bound, and the 1/f detector's power under both references.
 
 Writes docs/loop_detection_rates.md (deterministic for given arguments: seeded, no timings in the file;
 the mean loop time per record length is printed).
 
     nice python benchmarks/bench_loop_detection.py --section clean --clean 40 100 40
-    nice python benchmarks/bench_loop_detection.py --section pairs --pair-seeds 6
+    nice python benchmarks/bench_loop_detection.py --section calibration --calibration 500 60 --power-seeds 10
+    nice python benchmarks/bench_loop_detection.py --section pairs --pair-seeds 10
     nice python benchmarks/bench_loop_detection.py --section effects --seeds 5
     python benchmarks/bench_loop_detection.py --write
 """
@@ -623,6 +627,7 @@ def write_document(args: argparse.Namespace) -> None:
     """docs/loop_detection_rates.md from the stored sections (a section not stored is said to be missing)."""
     commands = (
         "Commands: `python benchmarks/bench_loop_detection.py --section clean --clean N300 N3600 N10000`, "
+        "`... --section calibration --calibration N300 N3600 --power-seeds K`, "
         "`... --section pairs --pair-seeds K`, `... --section effects --seeds K`, then `... --write` "
         "(sections can run in parallel, and a clean duration can be split over runs with `--durations D "
         "--first-seed S`; the counts used are in the tables)."

@@ -5,6 +5,7 @@ whole simulated records."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -18,6 +19,7 @@ from carousel_theory.closed_loop.calibration import (
 )
 from carousel_theory.closed_loop.linear_statistics import nested_chi_square
 from carousel_theory.closed_loop.noise_detectors import FlickerDetector, NestedAllanStatistic
+from carousel_theory.closed_loop.residual_model import ModelTerms
 from carousel_theory.closed_loop.view import ModelSpec, build_view
 from carousel_theory.simulate import sample_noise, simulate_recording
 
@@ -116,3 +118,10 @@ def test_flicker_detector_is_deterministic_and_finds_strong_flicker():
     assert first.log10_p == pytest.approx(math.log10(2.0 / 2000.0), rel=1e-12)
     clean = FlickerDetector().detect(_view(30_000, seed=6), 1e-3)
     assert clean.details["replicates"] < 1999 or not clean.significant
+
+
+def test_flicker_detector_says_when_the_model_already_has_a_1f_term():
+    view = _view(30_000)
+    with_flicker = replace(view, spec=replace(view.spec, terms=ModelTerms(flicker=True)))
+    detection = FlickerDetector().detect(with_flicker, 1e-3)
+    assert not detection.testable and "already has a 1/f term" in detection.note

@@ -169,6 +169,9 @@ class FlickerDetector:
         return observed, p_value, drawn, statistic.dof
 
     def detect(self, view: ResidualView, alpha: float) -> Detection:
+        if view.spec.terms.flicker:
+            note = "the model already has a 1/f term"
+            return untestable(self.name, self.statistic_name, float("nan"), note)
         tests = len(view.axes)
         rng = np.random.default_rng([BOOTSTRAP_SEED, FLICKER_STREAM])
         results = {axis: self._axis_p(view, axis, alpha / tests, rng) for axis in view.axes}
