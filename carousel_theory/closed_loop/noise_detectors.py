@@ -10,8 +10,9 @@ from scipy import optimize, stats
 from scipy.linalg import solve_triangular
 
 from carousel_theory.closed_loop.calibration import (
-    BOOTSTRAP_SEED,
+    FLICKER_STREAM,
     AllanVarianceSampler,
+    bootstrap_generator,
     sequential_monte_carlo_p,
 )
 from carousel_theory.closed_loop.detection import Detection, untestable
@@ -23,8 +24,6 @@ from carousel_theory.noise_model import term_allan_variance
 
 __all__ = ["ColoredNoiseDetector", "FlickerDetector", "FlickerGoodnessOfFit", "NestedAllanStatistic"]
 
-#: Second seed word of the 1/f detector's bootstrap generator (the first is BOOTSTRAP_SEED).
-FLICKER_STREAM = 1
 
 #: Every this many-th periodogram ordinate is used: the Hann window's DFT kernel has three taps (lags
 #: −1, 0, 1), so for white Gaussian noise ordinates three bins apart are independent (to O(1/n)).
@@ -152,8 +151,9 @@ class FlickerDetector:
     p = (1 + #{T* ≥ T})/(B + 1) by the loop's sequential Monte Carlo test
     (:func:`~carousel_theory.closed_loop.calibration.sequential_monte_carlo_p`) at α over the axes
     (Bonferroni). C is held at the observed fit's (the weights are treated as fixed, as the trend
-    detectors' are); the draws come from a generator seeded by BOOTSTRAP_SEED, so a recording always gets
-    the same answer."""
+    detectors' are); the draws come from
+    :func:`~carousel_theory.closed_loop.calibration.bootstrap_generator`, seeded by the observed Allan
+    variances, so a recording always gets the same answer and different recordings independent replicates."""
 
     name = "flicker"
     stochastic = True
@@ -173,7 +173,7 @@ class FlickerDetector:
             note = "the model already has a 1/f term"
             return untestable(self.name, self.statistic_name, float("nan"), note)
         tests = len(view.axes)
-        rng = np.random.default_rng([BOOTSTRAP_SEED, FLICKER_STREAM])
+        rng = bootstrap_generator(FLICKER_STREAM, [view.fits[axis].observed for axis in view.axes])
         results = {axis: self._axis_p(view, axis, alpha / tests, rng) for axis in view.axes}
         axes = tuple(axis for axis, result in results.items() if result[1] <= alpha / tests)
         best_axis = min(results, key=lambda axis: (results[axis][1], -results[axis][0]))
