@@ -13,7 +13,10 @@ from conftest import Z_MONTE_CARLO
 from scipy import stats
 
 from carousel_theory.closed_loop.calibration import (
+    FLICKER_STREAM,
+    MISFIT_STREAM,
     AllanVarianceSampler,
+    bootstrap_generator,
     octave_allan,
     sequential_monte_carlo_p,
 )
@@ -125,3 +128,23 @@ def test_flicker_detector_says_when_the_model_already_has_a_1f_term():
     with_flicker = replace(view, spec=replace(view.spec, terms=ModelTerms(flicker=True)))
     detection = FlickerDetector().detect(with_flicker, 1e-3)
     assert not detection.testable and "already has a 1/f term" in detection.note
+
+
+def test_digest_seeded_tests_have_their_size_across_recordings():
+    """Each "recording" (a uniform statistic) seeds its own replicates from a digest of what it observed:
+    over 40,000 recordings the rejection rate is 1/(B + 1), as for independent replicates (one fixed
+    stream would give every recording the same critical value instead); the same values give the same
+    stream."""
+    rng = np.random.default_rng(29)
+    trials, alpha = 40_000, 0.05
+    size = 1.0 / math.ceil(1.0 / alpha)
+    rejections = 0
+    for _ in range(trials):
+        observed = rng.random()
+        replicates = bootstrap_generator(FLICKER_STREAM, [np.array([observed])])
+        rejections += sequential_monte_carlo_p(replicates.random, observed, alpha)[0] <= alpha
+    standard_error = math.sqrt(size * (1 - size) / trials)
+    assert Z_MONTE_CARLO * standard_error < 0.25 * size
+    assert abs(rejections / trials - size) <= Z_MONTE_CARLO * standard_error
+    same = [bootstrap_generator(MISFIT_STREAM, [np.arange(3.0)]).random() for _ in range(2)]
+    assert same[0] == same[1] != bootstrap_generator(FLICKER_STREAM, [np.arange(3.0)]).random()
