@@ -119,6 +119,11 @@ NULL_DISTRIBUTIONS = [
     "χ²_ν; long τ: sequential parametric bootstrap from the fitted model, exact size "
     "(carousel_theory/closed_loop/calibration.py) |",
     "",
+    "Both bootstraps draw their replicates from a generator seeded with a digest of the observed values "
+    "(calibration.bootstrap_generator): a recording always gets the same decision, and different recordings "
+    "independent replicates. With one fixed stream every recording would meet the same critical value, and "
+    "the size over recordings would be that of one draw rather than 1/(B + 1).",
+    "",
 ]
 
 
@@ -205,11 +210,12 @@ def run_ladders(seeds: int) -> list[tuple]:
 
 
 def run_pairs(
-    seeds: int, stored: Callable[[list], None] | None = None
-) -> list[tuple[PairCase, dict[str, int], int, int]]:
-    """Each pair case on ``seeds`` 1 h records; ``stored`` is called after every case with the rows so far."""
-    rows = []
-    for case in progress(PAIRS, label="pairs"):
+    seeds: int, stored: Callable[[list], None] | None = None, cases: list[int] | None = None
+) -> list[tuple[PairCase, dict[str, int], int, int, int]]:
+    """Each pair case (or those of index ``cases``) on ``seeds`` 1 h records; ``stored`` is called after
+    every record with the rows so far (case, named counts, all named, other name, records)."""
+    rows: list[tuple[PairCase, dict[str, int], int, int, int]] = []
+    for case in progress([PAIRS[i] for i in cases] if cases else PAIRS, label="pairs"):
         named = dict.fromkeys(case.expected, 0)
         both = other = 0
         for seed in range(seeds):
@@ -218,9 +224,9 @@ def run_pairs(
                 named[name] += name in result.effects
             both += all(name in result.effects for name in case.expected)
             other += any(e not in (*case.expected, "none", "unexplained") for e in result.effects)
-        rows.append((case, named, both, other))
-        if stored is not None:
-            stored(rows)
+            if stored is not None:
+                stored([*rows, (case, dict(named), both, other, seed + 1)])
+        rows.append((case, named, both, other, seeds))
     return rows
 
 
@@ -479,10 +485,23 @@ def _warmup_threshold(iteration: int) -> float:
     return float(stats.norm.isf(detector_alpha(ALPHA, iteration, detectors) / (2 * 8 * 2)))
 
 
-def _pair_lines(rows: list, seeds: int) -> list[str]:
+def _pair_rows(parts: Path) -> list[tuple]:
+    """The stored pair cases (parts pairs*.json; a case stored twice counts with its most records), in
+    the order of PAIRS."""
+    best: dict[int, list] = {}
+    for path in sorted(parts.glob("pairs*.json")):
+        for index, *row in json.loads(path.read_text(encoding="utf-8")):
+            if index not in best or row[-1] > best[index][-1]:
+                best[index] = row
+    return [(PAIRS[index], *best[index]) for index in sorted(best)]
+
+
+def _pair_lines(rows: list) -> list[str]:
     known = _known_variance_warmup_z([case for case, *_ in rows])
+    counts = sorted({row[-1] for row in rows})
+    seeds_text = f"{counts[0]} seeds each" if len(counts) == 1 else "records per case as counted"
     lines = [
-        f"## Effects that mask each other, 1 h records, {seeds} seeds each",
+        f"## Effects that mask each other, 1 h records, {seeds_text}",
         "",
         "Warm-up and temperature statistics are computed with the competing stochastic term refitted jointly "
         "with the regressor (1/f noise for the warm-up, the rate random walk for the temperature), so the "
@@ -495,21 +514,21 @@ def _pair_lines(rows: list, seeds: int) -> list[str]:
         "known |",
         "|---|---|---|---|---|---|---|",
     ]
-    for case, named, both, other in rows:
+    for case, named, both, other, seeds in rows:
         each = ", ".join(f"{name} {count}/{seeds}" for name, count in named.items())
         z = f"{known[case.label]:.1f}" if case.label in known else "—"
         lines.append(
             f"| {case.label} | {'; '.join(case.effects)} | {case.rrw_variance:g} | {each} | {both}/{seeds} | "
             f"{other}/{seeds} | {z} |"
         )
-    return [*lines, "", *_masking_notes(rows, seeds, known)]
+    return [*lines, "", *_masking_notes(rows, known)]
 
 
-def _masking_notes(rows: list, seeds: int, known: dict[str, float]) -> list[str]:
+def _masking_notes(rows: list, known: dict[str, float]) -> list[str]:
     """A plain statement for each case whose warm-up is above its known-variance detection limit in
     both iterations yet named in fewer than half of the records."""
     notes = []
-    for case, named, _, _ in rows:
+    for case, named, _, _, seeds in rows:
         z = known.get(case.label)
         if z is None or z <= _warmup_threshold(2) or 2 * named.get("warmup", 0) >= seeds:
             continue
@@ -581,9 +600,10 @@ def run_section(section: str, args: argparse.Namespace) -> None:
             args.pair_seeds,
             lambda rows: _save(
                 args.parts,
-                "pairs",
-                [[PAIRS.index(case), named, both, other] for case, named, both, other in rows],
+                "pairs" + "".join(f"_{i}" for i in args.pair_cases or []),
+                [[PAIRS.index(row[0]), *row[1:]] for row in rows],
             ),
+            args.pair_cases,
         )
     else:
         _save(
@@ -623,12 +643,11 @@ def _document_sections(args: argparse.Namespace) -> list[str]:
         lines += _calibration_lines(calibration, _maybe(args.parts, "flicker_power"))
     else:
         lines += ["## Each decision's own rejection rate on clean records", "", MISSING, ""]
-    pairs, used = _maybe(args.parts, "pairs"), _maybe(args.parts, "arguments_pairs")
-    if pairs is None:
+    rows = _pair_rows(args.parts)
+    if not rows:
         lines += ["## Effects that mask each other", "", MISSING, ""]
     else:
-        rows = [(PAIRS[i], named, both, other) for i, named, both, other in pairs]
-        lines += _pair_lines(rows, used["pair_seeds"])
+        lines += _pair_lines(rows)
     effects, used = _maybe(args.parts, "effects"), _maybe(args.parts, "arguments_effects")
     if effects is None:
         return [*lines, "## Single effects and outside the catalogue", "", MISSING, ""]
@@ -706,6 +725,9 @@ def main() -> int:
     )
     parser.add_argument("--power-seeds", type=int, default=20, help="records per 1/f power case")
     parser.add_argument("--seeds", type=int, default=10, help="records per single effect and amplitude")
+    parser.add_argument(
+        "--pair-cases", type=int, nargs="*", help="indices of the pair cases to run (default all)"
+    )
     parser.add_argument("--pair-seeds", type=int, default=10, help="records per pair case (1 h each)")
     parser.add_argument("--parts", type=Path, default=Path("benchmarks/loop_detection_parts"))
     parser.add_argument("--out", type=Path, default=Path("docs/loop_detection_rates.md"))
