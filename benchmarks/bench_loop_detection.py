@@ -8,12 +8,16 @@
 3. **Pairs that mask each other**, at 1 h: a warm-up transient under 1/f noise, a temperature effect under
    a strong rate random walk; each effect alone at the same amplitude for reference.
 4. **Outside the catalogue**: a sawtooth must give ``unexplained``, never a catalogue name.
+5. **Single decisions** on clean records: the rejection rate of each trend detector and of the 1/f
+   detector (bootstrap and former χ²₁ / F references) at a nominal level of 0.05, the coverage of the
+   trend statistics' variance bound, and the 1/f detector's power under both references.
 
 Writes docs/loop_detection_rates.md (deterministic for given arguments: seeded, no timings in the file;
 the mean loop time per record length is printed).
 
     nice python benchmarks/bench_loop_detection.py --section clean --clean 40 100 40
-    nice python benchmarks/bench_loop_detection.py --section pairs --pair-seeds 6
+    nice python benchmarks/bench_loop_detection.py --section calibration --calibration 500 60 --power-seeds 10
+    nice python benchmarks/bench_loop_detection.py --section pairs --pair-seeds 10
     nice python benchmarks/bench_loop_detection.py --section effects --seeds 5
     python benchmarks/bench_loop_detection.py --write
 """
@@ -25,7 +29,7 @@ import json
 import time
 from collections import Counter
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -76,6 +80,7 @@ PAIRS = (
         ("warmup:amplitude=4e-3,time_constant=120", "flicker:variance=5e-8"),
         ("warmup", "flicker"),
     ),
+    PairCase("warm-up (4e-3) alone", ("warmup:amplitude=4e-3,time_constant=120",), ("warmup",)),
     PairCase("1/f noise alone", ("flicker:variance=5e-8",), ("flicker",)),
     PairCase(
         "temperature under a strong random walk (σ_q² = 1e-10)",
@@ -95,19 +100,29 @@ NULL_DISTRIBUTIONS = [
     "| spikes | max robust abs z about the running median | normal tail, Bonferroni over samples and axes "
     "(the robust scale's bias is removed; tests/test_effects.py checks the tail at 3σ) |",
     "| steps, warm-up, temperature | GLS linear statistic L = Σ w_t e_t | exactly Gaussian given the noise "
-    "variances; the variance is taken at its upper (1 − γ) confidence bound from the fitter's GLS "
-    "covariance (delta method) and γ = 0.1 × the detector's rate is added to the p-value (Berger & Boos "
-    "1994); only the bound's coverage is asymptotic |",
+    "variances; the variance is taken at its upper (1 − γ) confidence bound V̂ + Φ̄⁻¹(γ) se(V̂) from the "
+    "fitter's GLS covariance (delta method) and γ = 0.1 × the detector's rate is added to the p-value "
+    "(Berger & Boos 1994). The bound's coverage is asymptotic, and is measured below: se(V̂) is evaluated "
+    "at the fitted variances, so it shrinks with V̂ and the bound is exceeded more often than γ on long "
+    "records (first order: Φ(−z_γ / (1 + z_γ r)), r = se/V); on 300 s records it is very wide |"
     "| sinusoid | max periodogram ordinate / (model spectrum × median level) | exact: an Exp(1) ordinate "
     "over the median of a block of Exp(1) ordinates (Rényi's representation), Bonferroni over ordinates |",
     "| colored noise | log ratio of the median whitened ordinates at 10 % and 42 % of f_s | ratio of "
     "medians of independent Exp(1) ordinates (every third ordinate), exact cumulant generating function, "
     "Lugannani–Rice tail (relative error O(1/M), M in the thousands) |",
-    "| 1/f noise | Δχ² of the nested GLS Allan-variance fits | χ²₁ (F(1, ν) when over-dispersed): "
-    "asymptotic, Gaussian Allan-variance estimates assumed |",
+    "| 1/f noise | Δχ²/max(1, χ²/ν) of the nested GLS Allan-variance fits (same covariance across τ) | "
+    "sequential parametric bootstrap from the fitted model without 1/f: Allan-variance vectors drawn "
+    "(long τ exactly from block sums, short τ — more than 2000 differences — Gaussian given the long ones "
+    "with the model's covariance), both fits redone per replicate, Besag–Clifford stopping, Bonferroni "
+    "over axes (carousel_theory/closed_loop/noise_detectors.py); replaces the χ²₁ / F(1, ν) reference |",
     "| final misfit | largest abs z of the Allan variance over τ and axes | short τ (> 2000 differences): "
     "χ²_ν; long τ: sequential parametric bootstrap from the fitted model, exact size "
     "(carousel_theory/closed_loop/calibration.py) |",
+    "",
+    "Both bootstraps draw their replicates from a generator seeded with a digest of the observed values "
+    "(calibration.bootstrap_generator): a recording always gets the same decision, and different recordings "
+    "independent replicates. With one fixed stream every recording would meet the same critical value, and "
+    "the size over recordings would be that of one draw rather than 1/(B + 1).",
     "",
 ]
 
@@ -195,11 +210,12 @@ def run_ladders(seeds: int) -> list[tuple]:
 
 
 def run_pairs(
-    seeds: int, stored: Callable[[list], None] | None = None
-) -> list[tuple[PairCase, dict[str, int], int, int]]:
-    """Each pair case on ``seeds`` 1 h records; ``stored`` is called after every case with the rows so far."""
-    rows = []
-    for case in progress(PAIRS, label="pairs"):
+    seeds: int, stored: Callable[[list], None] | None = None, cases: list[int] | None = None
+) -> list[tuple[PairCase, dict[str, int], int, int, int]]:
+    """Each pair case (or those of index ``cases``) on ``seeds`` 1 h records; ``stored`` is called after
+    every record with the rows so far (case, named counts, all named, other name, records)."""
+    rows: list[tuple[PairCase, dict[str, int], int, int, int]] = []
+    for case in progress([PAIRS[i] for i in cases] if cases else PAIRS, label="pairs"):
         named = dict.fromkeys(case.expected, 0)
         both = other = 0
         for seed in range(seeds):
@@ -208,9 +224,9 @@ def run_pairs(
                 named[name] += name in result.effects
             both += all(name in result.effects for name in case.expected)
             other += any(e not in (*case.expected, "none", "unexplained") for e in result.effects)
-        rows.append((case, named, both, other))
-        if stored is not None:
-            stored(rows)
+            if stored is not None:
+                stored([*rows, (case, dict(named), both, other, seed + 1)])
+        rows.append((case, named, both, other, seeds))
     return rows
 
 
@@ -223,6 +239,172 @@ def run_outside(seeds: int) -> Counter:
         else:
             outcome["unexplained" if "unexplained" in result.effects else "none"] += 1
     return outcome
+
+
+# --- calibration of single decisions (the detectors' own rates at a nominal level) ----------------------
+
+#: Nominal level at which the detectors' own rejection rates on clean records are counted (large enough
+#: that a 2-point excess shows in a few thousand records).
+NOMINAL = 0.05
+#: Confidence levels at which the coverage of the trend statistics' variance bound is counted.
+COVERAGE_GAMMAS = (0.1, 0.05, 0.01, 0.001)
+#: Seeds of the calibration records (apart from the loop's).
+CALIBRATION_SEED = 50_000
+
+
+def _asymptotic_flicker_log_p(view: Any, axis: str) -> float:
+    """The 1/f decision's former reference: Δχ²/max(1, χ²/ν) to χ²₁, or F(1, ν) when χ²/ν > 1."""
+    from carousel_theory.closed_loop.linear_statistics import nested_chi_square
+
+    without, _ = nested_chi_square(view, axis, flicker=False)
+    with_flicker, dof = nested_chi_square(view, axis, flicker=True)
+    dof = max(dof, 1)
+    dispersion = with_flicker / dof
+    statistic = max(0.0, without - with_flicker) / max(1.0, dispersion)
+    if dispersion > 1.0:
+        return float(stats.f.logsf(statistic, 1, dof))
+    return float(stats.chi2.logsf(statistic, 1))
+
+
+def _asymptotic_flicker_rejects(view: Any, alpha: float) -> bool:
+    tests = len(view.axes)
+    return any(_asymptotic_flicker_log_p(view, axis) < np.log(alpha / tests) for axis in view.axes)
+
+
+def _coverage_misses(view: Any, axis: str) -> dict[str, list[int]]:
+    """For the weights of a middle step, a warm-up (τ_c = T/20) and the temperature column, chosen under
+    the fit: is V(θ) above the upper bound V̂ + Φ̄⁻¹(γ) se(V̂) at each γ of COVERAGE_GAMMAS?"""
+    from carousel_theory.closed_loop.linear_statistics import gls_weights, step_scan
+    from carousel_theory.closed_loop.residual_model import (
+        FittedNoise,
+        statistic_variance,
+        statistic_variance_error,
+    )
+    from carousel_theory.closed_loop.trend_detectors import _exponential
+    from carousel_theory.noise_model import NoiseModel
+
+    true = FittedNoise(NoiseModel(RATE, white_variance=WHITE, rrw_variance=WALK))
+    span = float(view.time[-1] - view.time[0])
+    weights = {
+        "steps": step_scan(view, axis).middle_weights,
+        "warmup": gls_weights(view, axis, _exponential(view, span / 20.0)),
+        "temperature": gls_weights(view, axis, view.temperature),
+    }
+    misses = {}
+    for name, w in weights.items():
+        spread = statistic_variance_error(view.fits[axis].noise, w)
+        truth = statistic_variance(true, w)
+        misses[name] = [
+            int(spread.variance + float(stats.norm.isf(g)) * spread.standard_error < truth)
+            for g in COVERAGE_GAMMAS
+        ]
+    return misses
+
+
+def _calibration_record(samples: int, seed: int) -> dict[str, Any]:
+    from carousel_theory.closed_loop.detectors import DETECTORS
+    from carousel_theory.closed_loop.view import ModelSpec, build_view
+
+    recording = _recording(samples, [], CALIBRATION_SEED + seed)
+    view = build_view(recording, ("wx", "wy"), ModelSpec())
+    rejected = {name: bool(DETECTORS[name].detect(view, NOMINAL).significant) for name in TREND_AND_FLICKER}
+    rejected["flicker (χ²₁ / F reference)"] = _asymptotic_flicker_rejects(view, NOMINAL)
+    return {"rejected": rejected, "misses": _coverage_misses(view, "wx")}
+
+
+TREND_AND_FLICKER = ("steps", "warmup", "temperature", "flicker")
+
+
+def run_calibration(counts: dict[int, int], stored: Callable[[dict], None]) -> None:
+    """Clean records of each duration: each detector's rejections at NOMINAL (1/f by both references)
+    and the coverage misses of the variance bound; stored after every record."""
+    tallies: dict[str, Any] = {}
+    for duration, count in counts.items():
+        tally = tallies.setdefault(str(duration), {"runs": 0, "rejected": Counter(), "misses": {}})
+        for seed in progress(range(count), label=f"calibration {duration} s"):
+            record = _calibration_record(int(duration * RATE), seed)
+            tally["runs"] += 1
+            tally["rejected"].update(name for name, value in record["rejected"].items() if value)
+            for name, misses in record["misses"].items():
+                total = tally["misses"].setdefault(name, [0] * len(COVERAGE_GAMMAS))
+                tally["misses"][name] = [a + b for a, b in zip(total, misses, strict=True)]
+            stored(tallies)
+
+
+def _power_row(variance: float, samples: int, seeds: int, alpha: float) -> list:
+    from carousel_theory.closed_loop.detectors import DETECTORS
+    from carousel_theory.closed_loop.view import ModelSpec, build_view
+
+    new = old = 0
+    for seed in range(seeds):
+        recording = _recording(samples, [f"flicker:variance={variance:g}"], 20_000 + seed)
+        view = build_view(recording, ("wx", "wy"), ModelSpec())
+        new += DETECTORS["flicker"].detect(view, alpha).significant
+        old += _asymptotic_flicker_rejects(view, alpha)
+    return [samples / RATE, variance, seeds, new, old]
+
+
+def run_flicker_power(seeds: int) -> list[list]:
+    """The 1/f detector alone at its first-iteration rate, bootstrap vs the former asymptotic reference,
+    on the records of the single-effect ladder (300 s, same seeds) and at the pair cases' 1/f level (1 h)."""
+    from carousel_theory.closed_loop.calibration import detector_alpha
+    from carousel_theory.closed_loop.detectors import TESTED_EFFECTS
+
+    alpha = detector_alpha(ALPHA, 1, len(TESTED_EFFECTS))
+    cases = [(SHORT, v) for v in LADDERS["flicker"][1]] + [(HOUR, 5e-8), (HOUR, 2e-8)]
+    return [_power_row(v, n, seeds, alpha) for n, v in progress(cases, label="1/f power")]
+
+
+def _rate_cell(count: int, runs: int) -> str:
+    low, high = clopper_pearson(count, runs)
+    return f"{count}/{runs} = {count / runs:.3f} [{low:.3f}, {high:.3f}]"
+
+
+def _calibration_lines(tallies: dict[str, Any], power: list[list] | None) -> list[str]:
+    names = [*TREND_AND_FLICKER, "flicker (χ²₁ / F reference)"]
+    lines = [
+        f"## Each decision's own rejection rate on clean records, at a nominal level of {NOMINAL:g}",
+        "",
+        "Each detector alone on the clean two-axis records (seeds from "
+        f"{CALIBRATION_SEED}), at level {NOMINAL:g} family-wise over its scan and the axes; a valid test "
+        f"rejects at most {NOMINAL:g} of them. Counts with the 95 % Clopper–Pearson interval. The 1/f "
+        "detector is shown with its bootstrap reference (used) and with the former χ²₁ / F reference.",
+        "",
+        "| duration | records | " + " | ".join(names) + " |",
+        "|---|---|" + "---|" * len(names),
+    ]
+    for duration, tally in sorted(tallies.items(), key=lambda item: int(item[0])):
+        cells = [_rate_cell(tally["rejected"].get(name, 0), tally["runs"]) for name in names]
+        lines.append(f"| {int(duration):g} s | {tally['runs']} | " + " | ".join(cells) + " |")
+    lines += [
+        "",
+        "## Coverage of the trend statistics' variance bound",
+        "",
+        "How often the true variance V(θ) of a GLS statistic exceeds its upper bound V̂ + Φ̄⁻¹(γ) se(V̂) "
+        "(rate, 95 % Clopper–Pearson), for the weights of a step in the middle, a warm-up with τ_c = T/20 "
+        "and the temperature column, chosen under the fit of axis wx; a valid bound is exceeded at most γ "
+        "of the time.",
+        "",
+        "| duration | weights | " + " | ".join(f"γ = {g:g}" for g in COVERAGE_GAMMAS) + " |",
+        "|---|---|" + "---|" * len(COVERAGE_GAMMAS),
+    ]
+    for duration, tally in sorted(tallies.items(), key=lambda item: int(item[0])):
+        for name, misses in tally["misses"].items():
+            cells = [_rate_cell(m, tally["runs"]) for m in misses]
+            lines.append(f"| {int(duration):g} s | {name} | " + " | ".join(cells) + " |")
+    if power:
+        lines += [
+            "",
+            "## Power of the 1/f detector alone, bootstrap vs the former asymptotic reference",
+            "",
+            "At its first-iteration rate in the loop (α split over 7 detectors), the same records for both.",
+            "",
+            "| duration | σ_f² | records | bootstrap reference | χ²₁ / F reference |",
+            "|---|---|---|---|---|",
+        ]
+        for duration, variance, seeds, new, old in power:
+            lines.append(f"| {duration:g} s | {variance:g} | {seeds} | {new}/{seeds} | {old}/{seeds} |")
+    return [*lines, ""]
 
 
 def _clean_lines(tallies: dict[int, CleanTally]) -> list[str]:
@@ -259,24 +441,107 @@ def _ladder_lines(rows: list[tuple], seeds: int) -> list[str]:
     return [*lines, ""]
 
 
-def _pair_lines(rows: list, seeds: int) -> list[str]:
+def _injected(case: PairCase, effect: str) -> dict[str, float]:
+    """The parameters of ``effect`` in the case's injections ({} when it is not injected)."""
+    for text in case.effects:
+        name, _, parameters = text.partition(":")
+        if name == effect:
+            return {k: float(v) for k, v in (item.split("=") for item in parameters.split(","))}
+    return {}
+
+
+def _known_variance_warmup_z(cases: list[PairCase]) -> dict[str, float]:
+    """The z of each case's warm-up with the noise variances known (the injected white, walk and 1/f):
+    A (wᵀg)/√V(w), g = e^{−t/τ_c}, w its GLS weights, V the exact variance under the injected noise —
+    the warm-up's detection limit under that noise, without the uncertainty of fitted variances."""
+    from carousel_theory.closed_loop.linear_statistics import gls_weights
+    from carousel_theory.closed_loop.residual_model import FittedNoise, statistic_variance
+    from carousel_theory.closed_loop.trend_detectors import _exponential
+    from carousel_theory.closed_loop.view import ModelSpec, build_view
+    from carousel_theory.noise_model import NoiseModel
+
+    view = build_view(_recording(HOUR, [], 40_000), ("wx",), ModelSpec())
+    result = {}
+    for case in cases:
+        warmup = _injected(case, "warmup")
+        if not warmup:
+            continue
+        flicker = _injected(case, "flicker").get("variance", 0.0)
+        walk = NoiseModel(RATE, white_variance=WHITE, rrw_variance=case.rrw_variance)
+        shape = _exponential(view, warmup["time_constant"])
+        weights = gls_weights(view, "wx", shape, FittedNoise(walk))
+        model = replace(walk, flicker_variance=flicker)
+        variance = statistic_variance(FittedNoise(model), weights)
+        result[case.label] = warmup["amplitude"] * float(np.dot(weights, shape)) / float(np.sqrt(variance))
+    return result
+
+
+def _warmup_threshold(iteration: int) -> float:
+    """|z| at which the warm-up (8 time constants × 2 axes) rejects with known variances, iteration k."""
+    from carousel_theory.closed_loop.calibration import detector_alpha
+    from carousel_theory.closed_loop.detectors import TESTED_EFFECTS
+
+    detectors = len(TESTED_EFFECTS) - (iteration > 1)  # the 1/f detector leaves once 1/f is fitted
+    return float(stats.norm.isf(detector_alpha(ALPHA, iteration, detectors) / (2 * 8 * 2)))
+
+
+def _pair_rows(parts: Path) -> list[tuple]:
+    """The stored pair cases (parts pairs*.json; a case stored twice counts with its most records), in
+    the order of PAIRS."""
+    best: dict[int, list] = {}
+    for path in sorted(parts.glob("pairs*.json")):
+        for index, *row in json.loads(path.read_text(encoding="utf-8")):
+            if index not in best or row[-1] > best[index][-1]:
+                best[index] = row
+    return [(PAIRS[index], *best[index]) for index in sorted(best)]
+
+
+def _pair_lines(rows: list) -> list[str]:
+    known = _known_variance_warmup_z([case for case, *_ in rows])
+    counts = sorted({row[-1] for row in rows})
+    seeds_text = f"{counts[0]} seeds each" if len(counts) == 1 else "records per case as counted"
     lines = [
-        f"## Effects that mask each other, 1 h records, {seeds} seeds each",
+        f"## Effects that mask each other, 1 h records, {seeds_text}",
         "",
         "Warm-up and temperature statistics are computed with the competing stochastic term refitted jointly "
         "with the regressor (1/f noise for the warm-up, the rate random walk for the temperature), so the "
-        "stochastic term fitted with the effect still in the data cannot hide it.",
+        "stochastic term fitted with the effect still in the data cannot hide it. The last column is the "
+        "warm-up's z with the injected noise variances known, against the |z| at which it is named with "
+        f"known variances in iteration 1 ({_warmup_threshold(1):.2f}) and 2 ({_warmup_threshold(2):.2f}): "
+        "above them the warm-up is above its detection limit under that noise.",
         "",
-        "| case | injected | σ_q² | each named | all named | another catalogue name |",
-        "|---|---|---|---|---|---|",
+        "| case | injected | σ_q² | each named | all named | another catalogue name | warm-up z, variances "
+        "known |",
+        "|---|---|---|---|---|---|---|",
     ]
-    for case, named, both, other in rows:
+    for case, named, both, other, seeds in rows:
         each = ", ".join(f"{name} {count}/{seeds}" for name, count in named.items())
+        z = f"{known[case.label]:.1f}" if case.label in known else "—"
         lines.append(
             f"| {case.label} | {'; '.join(case.effects)} | {case.rrw_variance:g} | {each} | {both}/{seeds} | "
-            f"{other}/{seeds} |"
+            f"{other}/{seeds} | {z} |"
         )
-    return [*lines, ""]
+    return [*lines, "", *_masking_notes(rows, known)]
+
+
+def _masking_notes(rows: list, known: dict[str, float]) -> list[str]:
+    """A plain statement for each case whose warm-up is above its known-variance detection limit in
+    both iterations yet named in fewer than half of the records."""
+    notes = []
+    for case, named, _, _, seeds in rows:
+        z = known.get(case.label)
+        if z is None or z <= _warmup_threshold(2) or 2 * named.get("warmup", 0) >= seeds:
+            continue
+        notes.append(
+            f"**Not achieved — {case.label}:** the warm-up is named in {named['warmup']}/{seeds} records "
+            f"although with the variances known its z ({z:.1f}) is above the limit of both iterations. The "
+            "joint test loses it in the variance of its statistic, not in its projection: with a 1/f term "
+            "in the noise model the statistic's variance is dominated by the fitted 1/f variance, whose "
+            "standard error is a large fraction of it, and the upper confidence bound of that variance "
+            "(the nuisance part of the p-value) then lowers z below the threshold; the 1/f term is named "
+            "and the warm-up, tested again with 1/f in the model, stays below it."
+        )
+    return [*notes, ""] if notes else []
 
 
 def _save(parts: Path, name: str, value: object) -> None:
@@ -286,6 +551,10 @@ def _save(parts: Path, name: str, value: object) -> None:
 
 def _load(parts: Path, name: str) -> object:
     return json.loads((parts / f"{name}.json").read_text(encoding="utf-8"))
+
+
+def _json_tally(tally: dict[str, Any]) -> dict[str, Any]:
+    return {"runs": tally["runs"], "rejected": dict(tally["rejected"]), "misses": tally["misses"]}
 
 
 def _clean_record(tally: CleanTally) -> list:
@@ -298,7 +567,13 @@ def run_section(section: str, args: argparse.Namespace) -> None:
     _save(
         args.parts,
         f"arguments_{section}",
-        {"clean": args.clean, "seeds": args.seeds, "pair_seeds": args.pair_seeds},
+        {
+            "clean": args.clean,
+            "seeds": args.seeds,
+            "pair_seeds": args.pair_seeds,
+            "calibration": args.calibration,
+            "power_seeds": args.power_seeds,
+        },
     )
     if section == "clean":
         counts = dict(zip(CLEAN_DURATIONS, args.clean, strict=True))
@@ -310,14 +585,25 @@ def run_section(section: str, args: argparse.Namespace) -> None:
                 lambda _, tally, name=name: _save(args.parts, name, _clean_record(tally)),
                 args.first_seed,
             )
+    elif section == "calibration":
+        counts = dict(zip((300, 3600), args.calibration, strict=True))
+        for duration, count in counts.items():
+            run_calibration(
+                {duration: count},
+                lambda tallies, d=duration: _save(
+                    args.parts, f"calibration_{d}", {k: _json_tally(v) for k, v in tallies.items()}
+                ),
+            )
+        _save(args.parts, "flicker_power", run_flicker_power(args.power_seeds))
     elif section == "pairs":
         run_pairs(
             args.pair_seeds,
             lambda rows: _save(
                 args.parts,
-                "pairs",
-                [[PAIRS.index(case), named, both, other] for case, named, both, other in rows],
+                "pairs" + "".join(f"_{i}" for i in args.pair_cases or []),
+                [[PAIRS.index(row[0]), *row[1:]] for row in rows],
             ),
+            args.pair_cases,
         )
     else:
         _save(
@@ -350,12 +636,18 @@ def _document_sections(args: argparse.Namespace) -> list[str]:
     missing = [f"{d:g} s" for d in CLEAN_DURATIONS if d not in tallies]
     if missing:
         lines += [f"Clean records of {', '.join(missing)}: {MISSING[0].lower()}{MISSING[1:]}", ""]
-    pairs, used = _maybe(args.parts, "pairs"), _maybe(args.parts, "arguments_pairs")
-    if pairs is None:
+    calibration: dict[str, Any] = {}
+    for path in sorted(args.parts.glob("calibration_*.json")):
+        calibration.update(json.loads(path.read_text(encoding="utf-8")))
+    if calibration:
+        lines += _calibration_lines(calibration, _maybe(args.parts, "flicker_power"))
+    else:
+        lines += ["## Each decision's own rejection rate on clean records", "", MISSING, ""]
+    rows = _pair_rows(args.parts)
+    if not rows:
         lines += ["## Effects that mask each other", "", MISSING, ""]
     else:
-        rows = [(PAIRS[i], named, both, other) for i, named, both, other in pairs]
-        lines += _pair_lines(rows, used["pair_seeds"])
+        lines += _pair_lines(rows)
     effects, used = _maybe(args.parts, "effects"), _maybe(args.parts, "arguments_effects")
     if effects is None:
         return [*lines, "## Single effects and outside the catalogue", "", MISSING, ""]
@@ -374,6 +666,7 @@ def write_document(args: argparse.Namespace) -> None:
     """docs/loop_detection_rates.md from the stored sections (a section not stored is said to be missing)."""
     commands = (
         "Commands: `python benchmarks/bench_loop_detection.py --section clean --clean N300 N3600 N10000`, "
+        "`... --section calibration --calibration N300 N3600 --power-seeds K`, "
         "`... --section pairs --pair-seeds K`, `... --section effects --seeds K`, then `... --write` "
         "(sections can run in parallel, and a clean duration can be split over runs with `--durations D "
         "--first-seed S`; the counts used are in the tables)."
@@ -400,7 +693,9 @@ def write_document(args: argparse.Namespace) -> None:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--section", choices=("clean", "pairs", "effects"), help="run one section")
+    parser.add_argument(
+        "--section", choices=("clean", "calibration", "pairs", "effects"), help="run one section"
+    )
     parser.add_argument("--write", action="store_true", help="write the document from the stored sections")
     parser.add_argument(
         "--clean",
@@ -420,13 +715,26 @@ def main() -> int:
     parser.add_argument(
         "--first-seed", type=int, default=0, help="first clean record's seed (to split a duration over runs)"
     )
+    parser.add_argument(
+        "--calibration",
+        type=int,
+        nargs=2,
+        default=[2400, 400],
+        metavar=("N300", "N3600"),
+        help="clean records of 300 s and 1 h for the detectors' own rates and the bound's coverage",
+    )
+    parser.add_argument("--power-seeds", type=int, default=20, help="records per 1/f power case")
     parser.add_argument("--seeds", type=int, default=10, help="records per single effect and amplitude")
+    parser.add_argument(
+        "--pair-cases", type=int, nargs="*", help="indices of the pair cases to run (default all)"
+    )
     parser.add_argument("--pair-seeds", type=int, default=10, help="records per pair case (1 h each)")
     parser.add_argument("--parts", type=Path, default=Path("benchmarks/loop_detection_parts"))
     parser.add_argument("--out", type=Path, default=Path("docs/loop_detection_rates.md"))
     args = parser.parse_args()
     started = time.monotonic()
-    sections = [args.section] if args.section else ([] if args.write else ["clean", "pairs", "effects"])
+    every = ["clean", "calibration", "pairs", "effects"]
+    sections = [args.section] if args.section else ([] if args.write else every)
     for section in sections:
         run_section(section, args)
     if args.write or not args.section:

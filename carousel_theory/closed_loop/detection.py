@@ -130,8 +130,12 @@ def bounded_two_sided(
     Given θ, L ~ N(0, V(θ)) exactly under the model, and the p-value 2Φ̄(|L|/√V(θ)) grows with V. The
     nuisance θ is handled as Berger & Boos (1994, JASA 89, 1012) do: with γ = NUISANCE_SHARE · α and
     V_γ = V̂ + Φ̄⁻¹(γ) se(V̂) an upper (1 − γ) confidence bound of V, p = tests · 2Φ̄(|L|/√V_γ) + γ is a
-    valid p-value (the supremum of the exact p over the confidence set, plus its non-coverage). Only the
-    bound's coverage is asymptotic (V̂ is a linear function of GLS estimates), and the weights w, chosen
+    valid p-value (the supremum of the exact p over the confidence set, plus its non-coverage). The
+    bound's coverage is asymptotic (V̂ is a linear function of GLS estimates) and not exact: se(V̂) is
+    evaluated at the fitted variances, so it shrinks with V̂, and to first order the bound is exceeded
+    with probability Φ(−z_γ / (1 + z_γ r)), r = se/V, z_γ = Φ̄⁻¹(γ) — above γ when r is small (long
+    records), far below it when r is near 1 (300 s); docs/loop_detection_rates.md measures it on clean
+    records, and the detectors' own rejection rates at a nominal level. The weights w, chosen
     from the fitted variances, are treated as fixed (they depend on the data only through the Allan
     variance). The Student-t reference with Satterthwaite degrees of freedom it replaces also assumed L
     independent of V̂, which it is not (both are large when the record's low-frequency power is)."""

@@ -11,7 +11,8 @@ name                    detection statistic (null: the fitted model; Bonferroni 
 ``spikes``              max robust |z| of the residual about its running median (trimmed scale)
 ``sinusoid``            max of the Hann periodogram / (model PSD × local median level), exact tail
 ``colored_noise``       log(median level 5–15 % f_s / median level 35–50 % f_s), exact median tails
-``flicker``             F = Δχ²/dispersion of the Allan-variance fit when a 1/f (d = 1/2) term is added
+``flicker``             Δχ²/dispersion of the Allan-variance fit when a 1/f (d = 1/2) term is added,
+                        parametric-bootstrap tail
 ======================  ==========================================================================
 """
 

@@ -215,9 +215,11 @@ def regressor_test(
     refitted jointly with the regressor (a Wald test under the alternative) with those stochastic terms:
     a competing term that could absorb the regressor (1/f noise under a warm-up) is fitted on the
     residual *without* the regressor, so it cannot hide it; a 1/f term the model lacks enters only when
-    that residual asks for it (:func:`_competing_terms`). The refit may not go below the null fit's
-    lower 2-standard-error limit for the walk (a smooth regressor absorbs a stretch of the random walk,
-    and σ_q² → 0 would make the test anticonservative). Without ``refit_terms``: the view's fit.
+    that residual asks for it (:func:`_competing_terms`). The refit may not go below the lower
+    2-standard-error limit for the walk of the null fit with the same terms (a smooth regressor absorbs
+    a stretch of the random walk, and σ_q² → 0 would make the test anticonservative; a null fit without
+    the 1/f term would count the 1/f power twice, once in its walk). Without ``refit_terms``: the view's
+    fit.
     """
     weights = gls_weights(view, axis, regressor)
     information = float(np.dot(weights, regressor))
@@ -239,7 +241,10 @@ def regressor_test(
         terms, competing_p = _competing_terms(view, axis, signal, refit_terms)
         refitted = refit(view, axis, signal, terms)
         del signal  # not held through the variance below, the peak of the joint refit
-        noise = bounded_noise(noise, refitted, keep_flicker_floor=not terms.flicker)
+        # The floor comes from the null fit with the same stochastic terms: without its 1/f term the
+        # null fit's walk holds the 1/f power too, and a floor from it would count that power twice.
+        floor = fit_with_terms(view, axis, terms).noise if terms != view.spec.terms else noise
+        noise = bounded_noise(floor, refitted, keep_flicker_floor=not terms.flicker)
         weights = gls_weights(view, axis, regressor, noise)
     spread = statistic_variance_error(noise, weights)
     projection = float(np.dot(weights, view.residuals[axis]))

@@ -3,18 +3,27 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize, stats
+from scipy.linalg import solve_triangular
 
+from carousel_theory.closed_loop.calibration import (
+    FLICKER_STREAM,
+    AllanVarianceSampler,
+    bootstrap_generator,
+    sequential_monte_carlo_p,
+)
 from carousel_theory.closed_loop.detection import Detection, untestable
-from carousel_theory.closed_loop.linear_statistics import nested_chi_square
 from carousel_theory.closed_loop.null_distributions import median_ratio_log_sf
-from carousel_theory.closed_loop.residual_model import ModelTerms, spectral_density
+from carousel_theory.closed_loop.residual_model import FLICKER_D, ModelTerms, ResidualFit, spectral_density
 from carousel_theory.closed_loop.signal_detectors import hann_periodogram
 from carousel_theory.closed_loop.view import FittedEffect, ResidualView
+from carousel_theory.noise_model import term_allan_variance
 
-__all__ = ["ColoredNoiseDetector", "FlickerDetector", "FlickerGoodnessOfFit"]
+__all__ = ["ColoredNoiseDetector", "FlickerDetector", "FlickerGoodnessOfFit", "NestedAllanStatistic"]
+
 
 #: Every this many-th periodogram ordinate is used: the Hann window's DFT kernel has three taps (lags
 #: −1, 0, 1), so for white Gaussian noise ordinates three bins apart are independent (to O(1/n)).
@@ -89,42 +98,95 @@ class ColoredNoiseDetector:
         return FittedEffect(self.name, {"maximum_order": self.maximum_order}, terms=terms)
 
 
-class FlickerDetector:
-    """Δχ² / max(1, χ²/ν) of the GLS Allan-variance fit when a 1/f (d = 1/2) term is added.
+def _whitened_design(
+    components: tuple[str, ...], sizes: np.ndarray, ar: tuple[float, ...], cholesky: np.ndarray
+) -> np.ndarray:
+    """The GLS design of :func:`carousel_theory.fitting.fit_observed` (the exact Allan variance of each
+    term at unit variance), whitened by C = LLᵀ and with unit-norm columns (the fitter's NNLS scaling)."""
+    columns = [term_allan_variance(name, sizes, FLICKER_D, ar_coefficients=ar) for name in components]
+    whitened = solve_triangular(cholesky, np.column_stack(columns), lower=True)
+    norms = np.linalg.norm(whitened, axis=0)
+    return whitened / np.where(norms > 0, norms, 1.0)
 
-    The fits share the model-based covariance across τ (:mod:`carousel_theory.fitting`), so Δχ² is χ²₁
-    under the model; when the larger fit misfits (χ²/ν > 1) its dispersion scales Δχ², which is then
-    referred to F(1, ν) (an estimated scale)."""
+
+@dataclass(frozen=True)
+class NestedAllanStatistic:
+    """T = max(0, χ²₀ − χ²₁) / max(1, χ²₁/ν) of the non-negative GLS fits of an Allan-variance vector
+    without (χ²₀) and with (χ²₁, ν degrees of freedom) a 1/f term, both under one fixed covariance C
+    across τ: the statistic of :class:`FlickerDetector`, cheap enough to recompute on every replicate.
+    On the observed Allan variance it equals the Δχ² of the loop's nested fits
+    (:func:`~carousel_theory.closed_loop.linear_statistics.nested_chi_square`)."""
+
+    cholesky: np.ndarray
+    reduced: np.ndarray
+    full: np.ndarray
+    dof: int
+
+    @classmethod
+    def from_fit(cls, fit: ResidualFit) -> NestedAllanStatistic:
+        """The statistic at the τ, AR coefficients and covariance across τ of ``fit`` (a fit without 1/f)."""
+        ar = fit.noise.model.ar_coefficients
+        cholesky = np.linalg.cholesky(np.asarray(fit.result.tau_covariance, dtype=np.float64))
+        reduced = ("ar" if ar else "white", "rrw")
+        full = _whitened_design((*reduced, "flicker"), fit.sizes, ar, cholesky)
+        dof = max(len(fit.sizes) - 3, 1)
+        return cls(cholesky, _whitened_design(reduced, fit.sizes, ar, cholesky), full, dof)
+
+    def __call__(self, allan: np.ndarray) -> float:
+        whitened = solve_triangular(self.cholesky, allan, lower=True)
+        without = optimize.nnls(self.reduced, whitened)[1] ** 2
+        with_flicker = optimize.nnls(self.full, whitened)[1] ** 2
+        return max(0.0, without - with_flicker) / max(1.0, with_flicker / self.dof)
+
+
+class FlickerDetector:
+    """Δχ² / max(1, χ²/ν) of the GLS Allan-variance fit when a 1/f (d = 1/2) term is added, referred to a
+    parametric bootstrap from the fitted model without it.
+
+    The fits share the covariance C across τ of the model's fit (:mod:`carousel_theory.fitting`). Δχ² is
+    χ²₁ only asymptotically (Gaussian Allan-variance estimates, the longest τ averaging a handful of
+    differences), so its null distribution is drawn instead: each replicate is an Allan-variance vector
+    of the fitted model (:class:`~carousel_theory.closed_loop.calibration.AllanVarianceSampler`, the long
+    τ exactly from block sums), refitted both ways under the same C (:class:`NestedAllanStatistic`), and
+    p = (1 + #{T* ≥ T})/(B + 1) by the loop's sequential Monte Carlo test
+    (:func:`~carousel_theory.closed_loop.calibration.sequential_monte_carlo_p`) at α over the axes
+    (Bonferroni). C is held at the observed fit's (the weights are treated as fixed, as the trend
+    detectors' are); the draws come from
+    :func:`~carousel_theory.closed_loop.calibration.bootstrap_generator`, seeded by the observed Allan
+    variances, so a recording always gets the same answer and different recordings independent replicates."""
 
     name = "flicker"
     stochastic = True
+    statistic_name = "Δχ² of the Allan-variance fit with a 1/f term (over its dispersion when above 1)"
+
+    def _axis_p(self, view: ResidualView, axis: str, alpha: float, rng: np.random.Generator) -> tuple:
+        """(statistic, Monte Carlo p-value, replicates drawn, residual degrees of freedom) of one axis."""
+        fit = view.fits[axis]
+        statistic = NestedAllanStatistic.from_fit(fit)
+        observed = statistic(fit.observed)
+        sampler = AllanVarianceSampler.from_fit(fit, len(view.cleaned[axis]))
+        p_value, drawn = sequential_monte_carlo_p(lambda: statistic(sampler.draw(rng)), observed, alpha)
+        return observed, p_value, drawn, statistic.dof
 
     def detect(self, view: ResidualView, alpha: float) -> Detection:
+        if view.spec.terms.flicker:
+            note = "the model already has a 1/f term"
+            return untestable(self.name, self.statistic_name, float("nan"), note)
         tests = len(view.axes)
-        best_log10_p, best_statistic, best_axis, best_dof, axes = 1.0, 0.0, "", 1, []
-        for axis in view.axes:
-            without, _ = nested_chi_square(view, axis, flicker=False)
-            with_flicker, dof = nested_chi_square(view, axis, flicker=True)
-            dof = max(dof, 1)
-            # The gain over the residual dispersion of the larger fit (at least 1), so that a model
-            # slightly off elsewhere does not pass for 1/f noise.
-            dispersion = with_flicker / dof
-            statistic = max(0.0, without - with_flicker) / max(1.0, dispersion)
-            log_sf = stats.f.logsf(statistic, 1, dof) if dispersion > 1.0 else stats.chi2.logsf(statistic, 1)
-            log10_p = min(0.0, math.log10(tests) + float(log_sf) / math.log(10.0))
-            if log10_p < math.log10(alpha):
-                axes.append(axis)
-            if log10_p < best_log10_p:
-                best_log10_p, best_statistic, best_axis, best_dof = log10_p, statistic, axis, dof
+        rng = bootstrap_generator(FLICKER_STREAM, [view.fits[axis].observed for axis in view.axes])
+        results = {axis: self._axis_p(view, axis, alpha / tests, rng) for axis in view.axes}
+        axes = tuple(axis for axis, result in results.items() if result[1] <= alpha / tests)
+        best_axis = min(results, key=lambda axis: (results[axis][1], -results[axis][0]))
+        statistic, p_value, drawn, dof = results[best_axis]
         return Detection(
             self.name,
-            best_statistic,
-            "Δχ² of the Allan-variance fit with a 1/f term (over its dispersion when above 1)",
-            float(stats.chi2.isf(alpha / tests, 1)),
-            min(0.0, best_log10_p),
+            statistic,
+            self.statistic_name,
+            float("nan"),  # a Monte Carlo test has no fixed threshold
+            min(0.0, math.log10(min(1.0, tests * p_value))),
             bool(axes),
-            tuple(axes),
-            {"axis": best_axis, "residual_degrees_of_freedom": best_dof},
+            axes,
+            {"axis": best_axis, "residual_degrees_of_freedom": dof, "replicates": drawn},
         )
 
     def fit(self, view: ResidualView, detection: Detection, alpha: float) -> FittedEffect:
