@@ -314,13 +314,31 @@ def _frozen(array: np.ndarray) -> np.ndarray:
     return array
 
 
+#: Lags per block of the 1/f autocovariance's running product (bounds its temporaries, 4 × 8 MiB).
+_FLICKER_BLOCK = 1 << 20
+
+
 @functools.lru_cache(maxsize=8)
 def _flicker_increment_autocovariance(d: float, lags: int) -> np.ndarray:
-    """ARFIMA(0, d − 1, 0) autocovariance at unit σ_w²: γ(0) = Γ(3 − 2d)/Γ(2 − d)², ratio (k−2+d)/(k+1−d)."""
+    """ARFIMA(0, d − 1, 0) autocovariance at unit σ_w²: γ(0) = Γ(3 − 2d)/Γ(2 − d)², ratio (k−2+d)/(k+1−d).
+
+    γ(k) = γ(0) Π_{j ≤ k} r_j, the running product taken in blocks of ``_FLICKER_BLOCK`` lags whose
+    first ratio is multiplied by the product so far: the same sequence of products as one cumulative
+    product over all lags, without temporaries of the record's length.
+    """
     gamma = np.empty(lags)
     gamma[0] = math.exp(math.lgamma(3.0 - 2.0 * d) - 2.0 * math.lgamma(2.0 - d))
-    k = np.arange(1, lags, dtype=np.float64)
-    gamma[1:] = gamma[0] * np.cumprod((k - 2.0 + d) / (k + 1.0 - d))
+    product = 1.0
+    for start in range(1, lags, _FLICKER_BLOCK):
+        stop = min(start + _FLICKER_BLOCK, lags)
+        k = np.arange(start, stop, dtype=np.float64)
+        ratio = k - 2.0 + d
+        ratio /= k + 1.0 - d
+        if start > 1:
+            ratio[0] *= product
+        np.cumprod(ratio, out=ratio)
+        product = float(ratio[-1])
+        np.multiply(gamma[0], ratio, out=gamma[start:stop])
     return _frozen(gamma)
 
 
