@@ -135,8 +135,10 @@ def test_flicker_increments_against_gamma_functions():
     d = mpmath.mpf("0.6")
     gamma = increment_autocovariance("flicker", 3_000_000, 0.6)
     for k in (0, 1, 5, 1 << 20, (1 << 20) + 1, 2_999_999):
-        exact = mpmath.gamma(3 - 2 * d) * mpmath.gamma(k - 1 + d) / (
-            mpmath.gamma(2 - d) * mpmath.gamma(d - 1) * mpmath.gamma(k + 2 - d)
+        exact = (
+            mpmath.gamma(3 - 2 * d)
+            * mpmath.gamma(k - 1 + d)
+            / (mpmath.gamma(2 - d) * mpmath.gamma(d - 1) * mpmath.gamma(k + 2 - d))
         )
         assert gamma[k] == pytest.approx(float(exact), rel=1e-9)
 
