@@ -31,7 +31,8 @@ Allan variance (m samples per cluster, τ = mΔt)
 
 Public API
     :class:`NoiseModel` (the dataclass), :func:`increment_autocovariance`, :func:`spectral_density`,
-    :func:`term_allan_variance`, :func:`ar_autocovariance`, :data:`TERMS`.
+    :func:`term_allan_variance`, :func:`ar_autocovariance`, :func:`unit_flicker_increment_autocovariance`,
+    :data:`TERMS`.
 """
 
 from __future__ import annotations
@@ -63,6 +64,7 @@ __all__ = [
     "increment_autocovariance",
     "spectral_density",
     "term_allan_variance",
+    "unit_flicker_increment_autocovariance",
 ]
 
 #: Noise terms, in a fixed order (the rows of a fit).
@@ -340,6 +342,12 @@ def _flicker_increment_autocovariance(d: float, lags: int) -> np.ndarray:
         product = float(ratio[-1])
         np.multiply(gamma[0], ratio, out=gamma[start:stop])
     return _frozen(gamma)
+
+
+def unit_flicker_increment_autocovariance(flicker_d: float, lags: int) -> np.ndarray:
+    """γ_z(k), k = 0 … lags − 1, of the 1/f term at unit σ_w²: the read-only array shared by every caller
+    with the same (d, lags), held once per process (a long record's fits reuse it)."""
+    return _flicker_increment_autocovariance(float(flicker_d), int(lags))
 
 
 def increment_autocovariance(
