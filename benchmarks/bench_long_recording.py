@@ -21,7 +21,10 @@ before the non-overlapping τ-covariance was summed in one buffer per pair, the 
 demand, the unanalysed columns were freed and the CSV reader stopped concatenating chunks; ``allan``
 and ``fit`` on the CSV 2.94 GB and 2.96 GB (31 s each; 3.73 GB before). At 4.32·10⁶ samples, the same
 run, old and new code side by side: ``loop`` NPZ 1.15 → 0.56 GB (80 → 69 s), CSV 1.41 → 0.85 GB
-(81 → 67 s).
+(81 → 67 s). With the Hann periodogram formed in place and the 1/f lag sums reading the shared unit
+autocovariance, ``loop`` on the CSV peaks at 3.93 GB (251 s, a less loaded box); the peak is the
+colored-noise detector's FFT (its input, output and NumPy's scratch array beside the residual) over the
+≈ 2.4 GB that the loop holds throughout.
 """
 
 from __future__ import annotations

@@ -31,7 +31,8 @@ Allan variance (m samples per cluster, τ = mΔt)
 
 Public API
     :class:`NoiseModel` (the dataclass), :func:`increment_autocovariance`, :func:`spectral_density`,
-    :func:`term_allan_variance`, :func:`ar_autocovariance`, :data:`TERMS`.
+    :func:`term_allan_variance`, :func:`ar_autocovariance`, :func:`unit_flicker_increment_autocovariance`,
+    :data:`TERMS`.
 """
 
 from __future__ import annotations
@@ -63,6 +64,7 @@ __all__ = [
     "increment_autocovariance",
     "spectral_density",
     "term_allan_variance",
+    "unit_flicker_increment_autocovariance",
 ]
 
 #: Noise terms, in a fixed order (the rows of a fit).
@@ -314,14 +316,38 @@ def _frozen(array: np.ndarray) -> np.ndarray:
     return array
 
 
+#: Lags per block of the 1/f autocovariance's running product (bounds its temporaries, 4 × 8 MiB).
+_FLICKER_BLOCK = 1 << 20
+
+
 @functools.lru_cache(maxsize=8)
 def _flicker_increment_autocovariance(d: float, lags: int) -> np.ndarray:
-    """ARFIMA(0, d − 1, 0) autocovariance at unit σ_w²: γ(0) = Γ(3 − 2d)/Γ(2 − d)², ratio (k−2+d)/(k+1−d)."""
+    """ARFIMA(0, d − 1, 0) autocovariance at unit σ_w²: γ(0) = Γ(3 − 2d)/Γ(2 − d)², ratio (k−2+d)/(k+1−d).
+
+    γ(k) = γ(0) Π_{j ≤ k} r_j, the running product taken in blocks of ``_FLICKER_BLOCK`` lags whose
+    first ratio is multiplied by the product so far: the same sequence of products as one cumulative
+    product over all lags, without temporaries of the record's length.
+    """
     gamma = np.empty(lags)
     gamma[0] = math.exp(math.lgamma(3.0 - 2.0 * d) - 2.0 * math.lgamma(2.0 - d))
-    k = np.arange(1, lags, dtype=np.float64)
-    gamma[1:] = gamma[0] * np.cumprod((k - 2.0 + d) / (k + 1.0 - d))
+    product = 1.0
+    for start in range(1, lags, _FLICKER_BLOCK):
+        stop = min(start + _FLICKER_BLOCK, lags)
+        k = np.arange(start, stop, dtype=np.float64)
+        ratio = k - 2.0 + d
+        ratio /= k + 1.0 - d
+        if start > 1:
+            ratio[0] *= product
+        np.cumprod(ratio, out=ratio)
+        product = float(ratio[-1])
+        np.multiply(gamma[0], ratio, out=gamma[start:stop])
     return _frozen(gamma)
+
+
+def unit_flicker_increment_autocovariance(flicker_d: float, lags: int) -> np.ndarray:
+    """γ_z(k), k = 0 … lags − 1, of the 1/f term at unit σ_w²: the read-only array shared by every caller
+    with the same (d, lags), held once per process (a long record's fits reuse it)."""
+    return _flicker_increment_autocovariance(float(flicker_d), int(lags))
 
 
 def increment_autocovariance(

@@ -63,7 +63,7 @@ import sympy as sp
 from carousel_theory import symbols
 from carousel_theory.increment_sums import flicker_normalisation, rising_factorial
 from carousel_theory.lag_quadrature import LagModel, counted_square_sum, counted_square_sums, ramp_positions
-from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, increment_autocovariance
+from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, unit_flicker_increment_autocovariance
 
 __all__ = [
     "FLICKER_REACH",
@@ -247,6 +247,18 @@ def _lag_range(model: NoiseModel, m_i: int, m_j: int, K_i: int, K_j: int, estima
     return max(-(K_i - 1) * m_i, -2 * m_j - reach), min((K_j - 1) * m_j, 2 * m_i + reach)
 
 
+def _place_lags(buffer: np.ndarray, gamma: np.ndarray, low: int, high: int) -> None:
+    """Write γ(|x|) for x = low … high into buffer[1 + x − low] where the lag |x| < len(gamma)."""
+    held = len(gamma)
+    if low < 0:  # x = start … stop (negative), lags −start … −stop, in decreasing order
+        start, stop = max(low, 1 - held), min(high, -1)
+        if start <= stop:
+            buffer[1 + start - low : 2 + stop - low] = gamma[-start : -stop - 1 : -1]
+    start, stop = max(low, 0), min(high, held - 1)
+    if start <= stop:
+        buffer[1 + start - low : 2 + stop - low] = gamma[start : stop + 1]
+
+
 class _LongMemory:
     """c_ij(δ) = Σ_u g_i[u] A_j(δ − 2m_i + 2 + u) with A_j(x) = Σ_u g_j[u] γ_z(x + u), g the triangle
     B_m⋆B_m: each triangle applied as two moving sums (cumulative sums) in one buffer holding γ_z over
@@ -268,28 +280,25 @@ class _LongMemory:
         terms = model.terms()
         # The other terms' γ_z vanish beyond the AR envelope's reach (values below do not depend on lags).
         finite = 4 + (_ar_reach(tuple(model.ar_coefficients)) if "ar" in terms else 0)
+        self.scale: float | None = None
         if "flicker" not in terms:
             self.gamma = model.increment_autocovariance(min(extent, finite))
             return
         # σ_f² γ_f, then the model's whole sum where the other terms reach: the same values as
-        # model.increment_autocovariance, without its temporaries of the record's length.
+        # model.increment_autocovariance, taken from the shared unit 1/f autocovariance as each window
+        # is filled, so that no scaled copy of the record's length is held.
         lags = max(extent, length)
-        self.gamma = increment_autocovariance("flicker", lags, model.flicker_d)
-        self.gamma *= terms["flicker"]
-        head = min(finite, lags)
-        self.gamma[:head] = model.increment_autocovariance(head)
+        self.gamma = unit_flicker_increment_autocovariance(model.flicker_d, lags)
+        self.scale = float(terms["flicker"])
+        self.head = model.increment_autocovariance(min(finite, lags))
 
     def _window(self, low: int, high: int) -> np.ndarray:
         """γ_z(|x|) for x = low … high behind one free slot (zero beyond the lags held)."""
         buffer = np.zeros(high - low + 2)
-        held = len(self.gamma)
-        if low < 0:  # x = start … stop (negative), lags −start … −stop, in decreasing order
-            start, stop = max(low, 1 - held), min(high, -1)
-            if start <= stop:
-                buffer[1 + start - low : 2 + stop - low] = self.gamma[-start : -stop - 1 : -1]
-        start, stop = max(low, 0), min(high, held - 1)
-        if start <= stop:
-            buffer[1 + start - low : 2 + stop - low] = self.gamma[start : stop + 1]
+        _place_lags(buffer, self.gamma, low, high)
+        if self.scale is not None:
+            buffer *= self.scale
+            _place_lags(buffer, self.head, low, high)
         return buffer
 
     def cross_covariance(self, m_i: int, m_j: int, first: int, last: int) -> np.ndarray:

@@ -64,6 +64,18 @@ def test_hann_periodogram_of_white_noise_has_mean_sigma_squared():
     assert abs(inner.mean() - variance) <= Z_MONTE_CARLO * standard_error
 
 
+@pytest.mark.parametrize("length", [1, 3, 1000, 4097])
+def test_hann_periodogram_equals_its_definition_bit_for_bit(length):
+    # |Σ h_t (x_t − x̄) e^{−iωt}|² / Σ h_t², written as one expression (the function works in place).
+    values = np.random.default_rng(length).standard_normal(length).cumsum()
+    window = np.hanning(length)
+    spectrum = np.fft.rfft((values - values.mean()) * window)
+    expected = (spectrum.real**2 + spectrum.imag**2) / float(np.dot(window, window))
+    frequencies, power = hann_periodogram(values, 50.0)
+    np.testing.assert_array_equal(power, expected)
+    np.testing.assert_array_equal(frequencies, np.fft.rfftfreq(length, d=1.0 / 50.0))
+
+
 def test_spike_statistic_is_gaussian_in_the_tail():
     """The deviation from the neighbours' median, over its scale, exceeds 3 as often as N(0, 1) does."""
     rng = np.random.default_rng(5)

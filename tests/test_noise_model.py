@@ -3,6 +3,7 @@ integrals), the increment autocovariances, and the refusal of bad models."""
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
 import mpmath
@@ -10,7 +11,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from carousel_theory import symbols
+from carousel_theory import noise_model, symbols
 from carousel_theory.noise_model import (
     QUANTIZATION_ALLAN_VARIANCE,
     RRW_ALLAN_VARIANCE,
@@ -105,6 +106,41 @@ def test_flicker_increments_sum_to_zero_and_are_negative():
     # tends to 0 as the tail, which is of order K^{2d−2}.
     partial = gamma[0] + 2 * gamma[1:].sum()
     assert abs(partial) < 5 * 200_000 ** (2 * 0.6 - 2)
+
+
+def _one_cumulative_product(d: float, lags: int) -> np.ndarray:
+    """γ_z of 1/f as one cumulative product over all lags, the form the blocks must reproduce."""
+    gamma = np.empty(lags)
+    gamma[0] = math.exp(math.lgamma(3.0 - 2.0 * d) - 2.0 * math.lgamma(2.0 - d))
+    k = np.arange(1, lags, dtype=np.float64)
+    gamma[1:] = gamma[0] * np.cumprod((k - 2.0 + d) / (k + 1.0 - d))
+    return gamma
+
+
+@pytest.mark.parametrize(("block", "lags"), [(7, 1), (7, 2), (7, 8), (7, 9), (7, 50), (1 << 20, 2_500_000)])
+def test_flicker_blocks_equal_one_cumulative_product_bit_for_bit(monkeypatch, block, lags):
+    monkeypatch.setattr(noise_model, "_FLICKER_BLOCK", block)
+    noise_model._flicker_increment_autocovariance.cache_clear()
+    try:
+        for d in (0.1, 0.5, 0.83):
+            got = noise_model._flicker_increment_autocovariance(d, lags)
+            assert np.array_equal(got, _one_cumulative_product(d, lags))
+            assert not got.flags.writeable
+    finally:
+        noise_model._flicker_increment_autocovariance.cache_clear()
+
+
+def test_flicker_increments_against_gamma_functions():
+    # γ_z(k) = Γ(3 − 2d) Γ(k − 1 + d) / (Γ(2 − d) Γ(d − 1) Γ(k + 2 − d)), the ARFIMA(0, d − 1, 0) form.
+    d = mpmath.mpf("0.6")
+    gamma = increment_autocovariance("flicker", 3_000_000, 0.6)
+    for k in (0, 1, 5, 1 << 20, (1 << 20) + 1, 2_999_999):
+        exact = (
+            mpmath.gamma(3 - 2 * d)
+            * mpmath.gamma(k - 1 + d)
+            / (mpmath.gamma(2 - d) * mpmath.gamma(d - 1) * mpmath.gamma(k + 2 - d))
+        )
+        assert gamma[k] == pytest.approx(float(exact), rel=1e-9)
 
 
 def test_model_allan_variance_adds_terms():

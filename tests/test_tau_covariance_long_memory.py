@@ -114,5 +114,12 @@ def test_held_increment_autocovariance_is_the_models(model):
     memory = tau_covariance._LongMemory(model, [(8, 8, 374, 374)], "non-overlapping", length)
     held = len(memory.gamma)
     expected = model.increment_autocovariance(max(held, length))
-    np.testing.assert_array_equal(memory.gamma, expected[:held])
     assert np.all(expected[held:] == 0)  # what is not held is zero
+    # Every window (a lag at each sign, both ends of what is held, and beyond it) holds the model's γ_z(|x|).
+    reach = held + 5
+    lags = np.abs(np.arange(-reach, reach + 1))
+    window = memory._window(-reach, reach)
+    assert window[0] == 0  # the free slot
+    np.testing.assert_array_equal(
+        window[1:], np.where(lags < held, expected[np.minimum(lags, held - 1)], 0.0)
+    )

@@ -23,11 +23,20 @@ def hann_periodogram(values: np.ndarray, sample_rate: float) -> tuple[np.ndarray
     white noise) each ordinate has mean ≈ S and, away from 0 and f_s/2, is ≈ S × Exp(1) for Gaussian
     data. The window keeps the leakage of a rate random walk's 1/f² spectrum local.
     """
+    # In place where the values allow, each record-length array freed once used: a long record holds
+    # at most four at a time (the window's own temporaries) beside ``values``.
+    window = np.hanning(len(values))
+    norm = float(np.dot(window, window))
     x = values - values.mean()
-    window = np.hanning(len(x))
-    spectrum = np.fft.rfft(x * window)
-    power = (spectrum.real**2 + spectrum.imag**2) / float(np.dot(window, window))
-    frequencies = np.fft.rfftfreq(len(x), d=1.0 / sample_rate)
+    x *= window
+    del window
+    spectrum = np.fft.rfft(x)
+    del x
+    power = spectrum.real**2
+    power += spectrum.imag**2
+    del spectrum
+    power /= norm
+    frequencies = np.fft.rfftfreq(len(values), d=1.0 / sample_rate)
     return frequencies, power
 
 
