@@ -255,13 +255,13 @@ CALIBRATION_SEED = 50_000
 def _asymptotic_flicker_log_p(view: Any, axis: str) -> float:
     """The 1/f decision's former reference: Δχ²/max(1, χ²/ν) to χ²₁, or F(1, ν) when χ²/ν > 1."""
     from carousel_theory.closed_loop.linear_statistics import nested_chi_square
+    from carousel_theory.closed_loop.residual_model import nested_statistic
 
     without, _ = nested_chi_square(view, axis, flicker=False)
     with_flicker, dof = nested_chi_square(view, axis, flicker=True)
     dof = max(dof, 1)
-    dispersion = with_flicker / dof
-    statistic = max(0.0, without - with_flicker) / max(1.0, dispersion)
-    if dispersion > 1.0:
+    statistic = nested_statistic(without, with_flicker, dof)
+    if with_flicker / dof > 1.0:
         return float(stats.f.logsf(statistic, 1, dof))
     return float(stats.chi2.logsf(statistic, 1))
 

@@ -40,6 +40,12 @@ __all__ = [
 ]
 
 
+#: The reference of the GLS trend statistics (steps, warm-up, temperature; closed_loop/detection.py).
+_BOUNDED_REFERENCE = (
+    "normal reference with the statistic's variance at its upper confidence bound (Berger–Boos)"
+)
+
+
 class Effect:
     """Base class of a catalogue entry; see the module table."""
 
@@ -83,7 +89,9 @@ class Warmup(Effect):
     detection = (
         "max over 8 time constants (log-spaced, T/500 … T/4) of |z| of the GLS projection of the residual "
         "on e^{−t/τ}, the noise refitted jointly with the transient and with a 1/f term when the residual "
-        "without the transient asks for one; Student t; Bonferroni over the grid and the axes"
+        "without the transient asks for one; "
+        + _BOUNDED_REFERENCE
+        + "; Bonferroni over the grid and the axes"
     )
     enters_model = (
         "a deterministic term A e^{−t/τ} added to the bias of each axis "
@@ -102,7 +110,7 @@ class Temperature(Effect):
     summary = "bias linear in the temperature column, k (T − T̄)"
     detection = (
         "|z| of the GLS projection of the residual on the temperature column, the noise (rate random walk "
-        "included) refitted jointly with the regressor; Student t; Bonferroni over axes"
+        "included) refitted jointly with the regressor; " + _BOUNDED_REFERENCE + "; Bonferroni over axes"
     )
     enters_model = "a term k_axis (T_t − T̄) added to the bias of each axis (k in rad/s per °C)"
     removal = "k by generalised least squares on each axis; subtracted"
@@ -121,7 +129,7 @@ class Steps(Effect):
     detection = (
         "max over t₀ of |z| of the generalised-least-squares estimate of a bias step between samples t₀ and "
         "t₀ + 1 under white noise + rate random walk (all t₀ from one tridiagonal solve), sd from the whole "
-        "fitted model; Bonferroni over the n − 1 positions and the axes"
+        "fitted model; " + _BOUNDED_REFERENCE + "; Bonferroni over the n − 1 positions and the axes"
     )
     enters_model = "a term h · 1[t ≥ t₀] added to the bias, for up to 5 jumps"
     removal = "each jump at the maximum |z|, its height by generalised least squares; subtracted; repeated"
@@ -138,7 +146,8 @@ class Sinusoid(Effect):
     summary = "a periodic disturbance A sin(2π f t + θ) (vibration, a mains pick-up)"
     detection = (
         "max over frequencies of the Hann periodogram divided by the fitted model's spectrum and by the "
-        "local median level (/ln 2): Exp(1) under the model; Bonferroni over the frequencies and the axes"
+        "local median level (/ln 2): an Exp(1) ordinate over the median of its block's Exp(1) ordinates "
+        "under the model (exact tail, Rényi's representation); Bonferroni over the frequencies and the axes"
     )
     enters_model = "a deterministic term A sin(2π f t + θ) per axis, one frequency shared by the axes"
     removal = "frequency refined by maximising the exact periodogram near the peak; A, θ by least squares"
@@ -184,7 +193,8 @@ class ColoredNoise(Effect):
     summary = "short-correlated noise: white noise through a low-order filter (a sensor's internal low-pass)"
     detection = (
         "z of log(median whitened periodogram in 5–15 % of f_s / median in 35–50 % of f_s), whitened by "
-        "the fitted model's spectrum; every second ordinate (independent); se² = 2.08 (1/M₁ + 1/M₂)"
+        "the fitted model's spectrum; every third ordinate (independent Exp(1) under the model); tail of "
+        "the ratio of the two medians from its exact cumulant generating function (saddlepoint)"
     )
     enters_model = (
         "the white noise becomes an autoregressive process of order p ≤ 4 (Yule–Walker), its long-run "
@@ -208,8 +218,9 @@ class Flicker(Effect):
     stochastic = True
     summary = "1/f noise (bias instability), fractional integration of order d = 1/2 (TIM 2014 eq. (3))"
     detection = (
-        "F = Δχ² / max(1, χ²/ν) of the Allan-variance fit (octave τ, weights from the equivalent degrees of "
-        "freedom) when a 1/f term is added to the fitted terms; F(1, ν); Bonferroni over axes"
+        "Δχ² / max(1, χ²/ν) of the GLS Allan-variance fits (octave τ, the model's covariance across τ) "
+        "without and with a 1/f term; sequential parametric bootstrap of the Allan variance from the "
+        "fitted model without it; Bonferroni over axes"
     )
     enters_model = "a 1/f component σ_f² (d = 1/2) in the noise model of each axis, fitted with the others"
     removal = "refit of the noise model with the 1/f term; nothing is subtracted"

@@ -43,11 +43,14 @@ Each half runs at half the final test's rate (Bonferroni); the reported p is 2 m
 1/f detector's nested-fit statistic to replicates of the whole Allan-variance vector of the fitted model
 (:class:`AllanVarianceSampler`: the long τ exactly from block sums, the short τ Gaussian given them).
 Every bootstrap draws from its own generator (:func:`bootstrap_generator`), seeded with BOOTSTRAP_SEED, a
-stream number per test and a digest of the observed values: a recording always gets the same decisions,
-and different recordings get independent replicates. The digest matters: with one fixed stream the
-critical value (the largest of the B replicates) would be the same draw for every recording, and the
-test's size over recordings would be one minus that draw's quantile, a random number of mean 1/(B + 1)
-but as likely as not far from it (at B = 39, 9 of 43 clean one-hour records rejected at a nominal 0.05).
+stream number per test and a digest of the observed values (their exact float64 bits): a recording gets
+the same decisions on the same numerical platform, and different recordings get independent replicates.
+A change in the last bit of an observed value (another summation order in NumPy or BLAS) draws other
+replicates, which can move a decision that sits at its threshold. The digest matters: with one fixed
+stream the critical value (the largest of the B replicates) would be the same draw for every recording,
+and the test's size over recordings would be one minus that draw's quantile, a random number of mean
+1/(B + 1) but as likely as not far from it (at B = 39, 9 of 43 clean one-hour records rejected at a
+nominal 0.05).
 """
 
 from __future__ import annotations
@@ -202,20 +205,16 @@ def sequential_monte_carlo_p(draw: Callable[[], float], statistic: float, alpha:
     distribution, and how many were drawn (module docstring).
 
     B = ⌈1/α⌉ − 1 replicates at most, the smallest B at which p = (1 + #{T* ≥ T})/(B + 1) can reach α,
-    exact-size for B + 1 exchangeable draws (Davison & Hinkley 1997, §4.2). Drawing stops as soon as the
-    exceedances make p > α certain; the p-value reported then is the sequential estimate h/l, h
-    exceedances in l draws (Besag & Clifford 1991), which is > α as well, so the decision is that of the
-    full test.
+    exact-size for B + 1 exchangeable draws (Davison & Hinkley 1997, §4.2). With B + 1 = ⌈1/α⌉ a single
+    exceedance already gives p ≥ 2/(B + 1) > α, so drawing stops at the first one; the p-value reported
+    then is the sequential estimate h/l = 1/l, one exceedance in l draws (Besag & Clifford 1991), which
+    is > α as well, so the decision is that of the full test.
     """
     budget = math.ceil(1.0 / alpha - 1e-9) - 1
-    allowed = math.floor(alpha * (budget + 1) + 1e-9) - 1  # p ≤ alpha ⟺ exceedances ≤ allowed
-    exceedances, drawn = 0, 0
-    while drawn < budget and exceedances <= allowed:
-        exceedances += draw() >= statistic
-        drawn += 1
-    if drawn == budget:
-        return (1 + exceedances) / (budget + 1), drawn
-    return min(1.0, exceedances / drawn), drawn
+    for drawn in range(1, budget + 1):
+        if draw() >= statistic:
+            return (2.0 / (budget + 1) if drawn == budget else 1.0 / drawn), drawn
+    return 1.0 / (budget + 1), budget
 
 
 def _bootstrap_p(

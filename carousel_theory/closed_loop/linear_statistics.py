@@ -24,6 +24,7 @@ from carousel_theory.closed_loop.residual_model import (
     bounded_noise,
     difference_covariance_bands,
     fit_residual_model,
+    nested_statistic,
     ranking_statistic_variance,
     statistic_variance,
     statistic_variance_error,
@@ -169,9 +170,8 @@ def _competing_terms(
         values, rate, reference = view.cleaned[axis] - signal, view.sample_rate, view.fits[axis]
         without = fit_residual_model(values, rate, ModelTerms(terms.ar_order, False), reference=reference)
         joint = fit_residual_model(values, rate, terms, reference=reference)
-    dof = max(joint.dof, 1)
-    statistic = max(0.0, without.chi_square - joint.chi_square) / max(1.0, joint.chi_square / dof)
-    p_value = float(stats.f.sf(statistic, 1, dof))
+    statistic = nested_statistic(without.chi_square, joint.chi_square, joint.dof)
+    p_value = float(stats.f.sf(statistic, 1, max(joint.dof, 1)))
     return (terms if p_value < COMPETING_TERM_LEVEL else ModelTerms(terms.ar_order)), p_value
 
 

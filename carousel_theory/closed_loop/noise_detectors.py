@@ -17,7 +17,13 @@ from carousel_theory.closed_loop.calibration import (
 )
 from carousel_theory.closed_loop.detection import Detection, untestable
 from carousel_theory.closed_loop.null_distributions import median_ratio_log_sf
-from carousel_theory.closed_loop.residual_model import FLICKER_D, ModelTerms, ResidualFit, spectral_density
+from carousel_theory.closed_loop.residual_model import (
+    FLICKER_D,
+    ModelTerms,
+    ResidualFit,
+    nested_statistic,
+    spectral_density,
+)
 from carousel_theory.closed_loop.signal_detectors import hann_periodogram
 from carousel_theory.closed_loop.view import FittedEffect, ResidualView
 from carousel_theory.noise_model import term_allan_variance
@@ -136,7 +142,7 @@ class NestedAllanStatistic:
         whitened = solve_triangular(self.cholesky, allan, lower=True)
         without = optimize.nnls(self.reduced, whitened)[1] ** 2
         with_flicker = optimize.nnls(self.full, whitened)[1] ** 2
-        return max(0.0, without - with_flicker) / max(1.0, with_flicker / self.dof)
+        return nested_statistic(without, with_flicker, self.dof)
 
 
 class FlickerDetector:

@@ -40,6 +40,7 @@ __all__ = [
     "difference_covariance_bands",
     "fit_residual_model",
     "model_curve_error",
+    "nested_statistic",
     "noise_growth",
     "ranking_statistic_variance",
     "revolution_bin_variance",
@@ -194,6 +195,14 @@ def fit_residual_model(
 def allan_z_values(fit: ResidualFit) -> np.ndarray:
     """z-value of each Allan-variance estimate of ``fit`` (:func:`chi_square_z`)."""
     return chi_square_z(fit.observed, fit.model, fit.edf)
+
+
+def nested_statistic(reduced_chi_square: float, full_chi_square: float, dof: int) -> float:
+    """Δχ² / max(1, χ²/ν) of two nested GLS Allan-variance fits under one covariance across τ: the
+    reduction of χ² when a term is added (never negative: a non-negative fit with one more column cannot
+    fit worse), scaled by the fuller fit's over-dispersion when it has any (ν ≥ 1 degrees of freedom)."""
+    dof = max(int(dof), 1)
+    return max(0.0, reduced_chi_square - full_chi_square) / max(1.0, full_chi_square / dof)
 
 
 def chi_square_z(observed: np.ndarray, expected: np.ndarray, edf: np.ndarray) -> np.ndarray:
