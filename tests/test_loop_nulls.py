@@ -87,8 +87,8 @@ def test_octave_allan_of_the_samples_is_the_fitted_estimator():
 
 def test_allan_variance_draws_have_the_law_of_whole_simulated_records():
     """1500 draws of the sampler (long τ from block sums, short τ Gaussian given them) against 1500
-    whole records of the fitted model through the same estimator: every τ's mean agrees within
-    Z_MONTE_CARLO standard errors, and the 1/f statistic's distribution passes a two-sample
+    whole records of the fitted model through the same estimator: every τ's mean and variance agree
+    within Z_MONTE_CARLO standard errors, and the 1/f statistic's distribution passes a two-sample
     Kolmogorov–Smirnov test at the suite's two-sided level."""
     samples, count = 30_000, 1500
     view = _view(samples, rrw_variance=1e-10)
@@ -107,6 +107,11 @@ def test_allan_variance_draws_have_the_law_of_whole_simulated_records():
     )
     spread = np.sqrt((drawn.var(axis=0) + whole.var(axis=0)) / count)
     assert np.all(np.abs(drawn.mean(axis=0) - whole.mean(axis=0)) <= Z_MONTE_CARLO * spread)
+    # Each τ's spread: log of the variance ratio, standard error from the fourth moments
+    # (se² of log s² is (κ − 1)/n, κ the kurtosis); a short-τ variance off by a factor two gives z ≈ 12.
+    kurtosis = [stats.kurtosis(values, axis=0, fisher=False) for values in (drawn, whole)]
+    log_ratio = np.log(drawn.var(axis=0) / whole.var(axis=0))
+    assert np.all(np.abs(log_ratio) <= Z_MONTE_CARLO * np.sqrt((kurtosis[0] - 1 + kurtosis[1] - 1) / count))
     level = 2.0 * float(stats.norm.sf(Z_MONTE_CARLO))
     result = stats.ks_2samp([statistic(a) for a in drawn], [statistic(a) for a in whole])
     assert result.pvalue > level
@@ -120,7 +125,7 @@ def test_flicker_detector_is_deterministic_and_finds_strong_flicker():
     assert first.significant and first.details["replicates"] == 1999  # α/2 per axis
     assert first.log10_p == pytest.approx(math.log10(2.0 / 2000.0), rel=1e-12)
     clean = FlickerDetector().detect(_view(30_000, seed=6), 1e-3)
-    assert clean.details["replicates"] < 1999 or not clean.significant
+    assert not clean.significant
 
 
 def test_flicker_detector_says_when_the_model_already_has_a_1f_term():
@@ -144,7 +149,10 @@ def test_digest_seeded_tests_have_their_size_across_recordings():
         replicates = bootstrap_generator(FLICKER_STREAM, [np.array([observed])])
         rejections += sequential_monte_carlo_p(replicates.random, observed, alpha)[0] <= alpha
     standard_error = math.sqrt(size * (1 - size) / trials)
-    assert Z_MONTE_CARLO * standard_error < 0.25 * size
+    # Resolves ±10 % of the size (4.5 standard errors = 0.0049 at 0.05): enough to catch a fixed stream
+    # (a rejection rate of 0.12 with this seed); the size itself is held to 1/(B + 1) by the
+    # 200,000-trial test of sequential_monte_carlo_p.
+    assert Z_MONTE_CARLO * standard_error < 0.1 * size
     assert abs(rejections / trials - size) <= Z_MONTE_CARLO * standard_error
     same = [bootstrap_generator(MISFIT_STREAM, [np.arange(3.0)]).random() for _ in range(2)]
     assert same[0] == same[1] != bootstrap_generator(FLICKER_STREAM, [np.arange(3.0)]).random()
