@@ -35,7 +35,7 @@ import numpy as np
 from carousel_theory import fitting, lag_quadrature, tau_covariance
 from carousel_theory.allan import allan_covariance
 from carousel_theory.fitting import fit_noise_model
-from carousel_theory.lag_quadrature import LagModel, _Pair, _values, ramp_positions
+from carousel_theory.lag_quadrature import LagModel, _make_pair, _values
 from carousel_theory.noise_model import NoiseModel
 from carousel_theory.simulate import sample_noise
 from carousel_theory.tau_covariance import allan_estimate_covariance
@@ -89,15 +89,7 @@ def _every_lag_check(size: int) -> None:
         pairs_of_sizes = list(zip(sizes.tolist(), terms.tolist(), strict=True))
         for j, (m_j, K_j) in enumerate(pairs_of_sizes):
             for i, (m_i, K_i) in enumerate(pairs_of_sizes[: j + 1]):
-                ramps = ramp_positions(m_i, m_j)
-                pair = _Pair(
-                    np.array([q for q, _ in ramps], dtype=float),
-                    np.array([w for _, w in ramps], dtype=float),
-                    m_i,
-                    m_j,
-                    K_i,
-                    K_j,
-                )
+                pair = _make_pair(m_i, m_j, K_i, K_j)
                 lags = np.arange(-(K_i - 1), K_j, dtype=float)
                 values, _ = _values(pair, lag_model, lags)
                 total = float(np.dot(pair.count(lags), values * values))

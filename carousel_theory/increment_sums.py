@@ -76,8 +76,10 @@ __all__ = [
     "flicker_allan_variance_closed",
     "flicker_fourth_sum",
     "flicker_fourth_sum_at_distance",
+    "flicker_increment_difference",
     "flicker_normalisation",
     "rising_factorial",
+    "squared_rising_factorial_sum",
 ]
 
 _d = symbols.d
@@ -146,6 +148,15 @@ _SERIES_TERMS = 26
 def flicker_normalisation(d: float) -> float:
     """C_d = Γ(3 − 2d)/(Γ(2 − d)Γ(d − 1)) of :data:`FLICKER_INCREMENT_AUTOCOVARIANCE` (negative)."""
     return float(_normalisation_numeric(float(d)))
+
+
+def flicker_increment_difference(x: Any, d: float, order: int = 0) -> np.ndarray:
+    """Δ^r γ_z(x), r = ``order``, of :data:`FLICKER_INCREMENT_AUTOCOVARIANCE` at unit σ_w² (forward
+    differences): C_d (2d − 3)_r↓ Γ(x + d − 1)/Γ(x + 2 − d + r), at real x ≥ 1 (γ_z itself at r = 0; the
+    Gamma ratio is even on the integers, so γ_z(|x|) gives every integer lag)."""
+    falling = math.prod(2.0 * d - 3.0 - k for k in range(order))
+    base = flicker_normalisation(d) * falling
+    return base / rising_factorial(np.asarray(x, dtype=np.float64) + d - 1.0, 3.0 - 2.0 * d + order)
 
 
 def _log_gamma_slope(a: np.ndarray, step: float) -> np.ndarray:

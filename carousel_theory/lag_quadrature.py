@@ -35,14 +35,15 @@ Far tail (distance from the support ≥ ``FAR`` times its width)
     coefficients of B_{m_i}(1 + t)² B_{m_j}(1 + t)²), with remainder ≤ ν_{R+1} |Δ^{R+1} γ_z(x₀ − R − 1)|
     (Newton's interpolation remainder and the monotone derivative above); that remainder is added to the
     bound through Σ w N e (2|c| + e). Pairs whose support is at most ``_DIRECT_WIDTH`` lags wide take c
-    elsewhere from Σ_u W(u) γ_z(δ + u) directly (at integer lags, by γ_z evaluated once on the integers the
-lags reach and correlated with W, and outside the support at any lag).
+    elsewhere from Σ_u W(u) γ_z(δ + u) directly (at integer lags, by γ_z evaluated once on the integers
+    the lags reach and correlated with W, and outside the support at any lag).
 
 Many pairs (:func:`counted_square_sums`, all the τ pairs of one covariance) are evaluated together:
 each pair is a row of :class:`_Pairs` (its ramp positions and weights, padded to nine with weight 0, and
 m_i, m_j, K_i, K_j), every lag and Gauss node carries the index of its row, and each step above (the
 partition into exact / direct / far, the nine-term sum, the Newton series, the derivative bounds) is one
-array operation over all pairs; the sums and bounds are reduced per row by ``np.bincount`` in the
+array operation over all pairs (only the narrow pairs' direct sums and the Newton moments loop over
+rows); the sums and bounds are reduced per row by ``np.bincount`` in the
 order of the row's own lags. At the exact lags H is needed only at integers: runs of consecutive lags
 give runs of arguments q − δ, merged across pairs (octave pairs share about thirty in thirty-one), H is
 evaluated once on their union and gathered by the run's offset. Everything is element by element and
@@ -68,6 +69,7 @@ from scipy import special
 from carousel_theory.increment_sums import (
     finite_fourth_sum,
     flicker_fourth_sum_at_distance,
+    flicker_increment_difference,
     flicker_normalisation,
     rising_factorial,
 )
@@ -179,11 +181,6 @@ class _Pair:
     def count(self, delta: np.ndarray) -> np.ndarray:
         """N_ij(δ), linear between the kinks 0 and K_j − K_i (also at non-integer δ inside a piece)."""
         return np.minimum(self.K_i - 1, self.K_j - 1 - delta) - np.maximum(0, -delta) + 1
-
-    def cross_covariance(self, lag_model: LagModel, delta: np.ndarray) -> np.ndarray:
-        """c_ij(δ) = Σ_q w_q H(q − δ)."""
-        values = lag_model.fourth_sum(self.positions[None, :] - delta[:, None])
-        return values @ self.weights
 
 
 @functools.lru_cache(maxsize=1024)
@@ -309,12 +306,6 @@ def _branch_bound(distance: np.ndarray, d: float) -> np.ndarray:
     return abs(scale) / rising_factorial(distance - p + 1.0 + d, p - 1.0 - 2.0 * d) / math.factorial(p)
 
 
-def _increment_difference(x: np.ndarray, d: float, order: int) -> np.ndarray:
-    """Δ^r γ_z(x) of unit 1/f increments, r = order: C_d (2d − 3)_r↓ Γ(x + d − 1)/Γ(x + 2 − d + r)."""
-    base = flicker_normalisation(d) * _falling(2.0 * d - 3.0, order)
-    return base / rising_factorial(x + d - 1.0, 3.0 - 2.0 * d + order)
-
-
 @functools.lru_cache(maxsize=256)
 def _binomials(m: int) -> np.ndarray:
     """C(m, r), r = 1 … R + 2 (the coefficients of B_m(1 + t) = ((1 + t)^m − 1)/t, shifted)."""
@@ -381,13 +372,13 @@ def _newton_series(
     for row in rows.tolist():
         table[row] = _factorial_moments(int(pairs.m_i[row]), int(pairs.m_j[row]), float(width[row]))
     moments, scale = table[owner], width[owner]
-    base = flicker_normalisation(d) / rising_factorial(nearest + d - 1.0, 3.0 - 2.0 * d)
+    base = flicker_increment_difference(nearest, d)
     total, term = np.zeros_like(nearest), base.copy()
     for r in range(_NEWTON_TERMS + 1):
         total += moments[:, r] * term
         term = term * (2.0 * d - 3.0 - r) * scale / (nearest + 2.0 - d + r)
     order = _NEWTON_TERMS + 1
-    difference = np.abs(_increment_difference(nearest - order, d, order))
+    difference = np.abs(flicker_increment_difference(nearest - order, d, order))
     remainder = moments[:, order] * difference * scale**order
     return lag_model.flicker_variance * total, lag_model.flicker_variance * remainder
 
@@ -407,7 +398,7 @@ def _derivative_bounds(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, en
     tail = nearest > GAUSS_POINTS + 2
     if np.any(tail):
         mass = pairs.m_i[owner[tail]] ** 2 * pairs.m_j[owner[tail]] ** 2
-        far = mass * np.abs(_increment_difference(nearest[tail] - GAUSS_POINTS, d, GAUSS_POINTS))
+        far = mass * np.abs(flicker_increment_difference(nearest[tail] - GAUSS_POINTS, d, GAUSS_POINTS))
         bound[tail] = np.minimum(bound[tail], far / math.factorial(GAUSS_POINTS))
     return lag_model.flicker_variance * bound
 
@@ -494,19 +485,18 @@ def _direct_flicker(m_i: int, m_j: int, lag_model: LagModel, lags: np.ndarray) -
     3 − 2d) (even on the integers, analytic on either side of the support). At integer lags γ_z is
     evaluated once on the integers the lags reach and correlated with W."""
     d, window = lag_model.flicker_d, _window(m_i, m_j)
-    normalisation, step = flicker_normalisation(d), 3.0 - 2.0 * d
     result = np.empty(len(lags))
     integral = lags == np.rint(lags)
     if np.any(integral):
         points = lags[integral]
         first, last = int(points.min()), int(points.max())
         arguments = np.abs(np.arange(first - 2 * m_i + 2, last + 2 * m_j - 1, dtype=np.float64))
-        gamma = normalisation / rising_factorial(arguments + d - 1.0, step)
+        gamma = flicker_increment_difference(arguments, d)
         result[integral] = np.correlate(gamma, window, "valid")[(points - first).astype(np.int64)]
     if not np.all(integral):
         offsets = np.arange(-(2 * m_i - 2), 2 * m_j - 1, dtype=np.float64)
         arguments = np.abs(lags[~integral][:, None] + offsets[None, :])
-        result[~integral] = (normalisation / rising_factorial(arguments + d - 1.0, step)) @ window
+        result[~integral] = flicker_increment_difference(arguments, d) @ window
     return lag_model.flicker_variance * result
 
 

@@ -61,7 +61,7 @@ import numpy as np
 import sympy as sp
 
 from carousel_theory import symbols
-from carousel_theory.increment_sums import flicker_normalisation, rising_factorial
+from carousel_theory.increment_sums import flicker_increment_difference
 from carousel_theory.lag_quadrature import LagModel, counted_square_sum, counted_square_sums, ramp_positions
 from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, unit_flicker_increment_autocovariance
 
@@ -232,7 +232,7 @@ def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, cou
     d = float(model.flicker_d)
     V = max(1, inner)
     # γ_z(V) of the unit 1/f term, FLICKER_INCREMENT_AUTOCOVARIANCE = C_d / (V + d − 1)^(3 − 2d) (rising).
-    unit_gamma = flicker_normalisation(d) / float(rising_factorial(np.array([V + d - 1.0]), 3.0 - 2.0 * d)[0])
+    unit_gamma = float(flicker_increment_difference(np.array([float(V)]), d)[0])
     gamma_V = abs(float(model.flicker_variance) * unit_gamma)
     tail = gamma_V**2 * (1.0 + (V + 2.0 - d) / (5.0 - 4.0 * d))
     return 2.0 * count * (float(m_i) ** 2 * float(m_j) ** 2) ** 2 * tail
@@ -335,14 +335,12 @@ def _twice_moving_sum(values: np.ndarray, m: int) -> np.ndarray:
     return _moving_sum_in_place(_moving_sum_in_place(values, m), m)
 
 
-def _lag_sum(
-    memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int, estimator: str
-) -> tuple[float, float]:
+def _lag_sum(memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int) -> tuple[float, float]:
     """(Σ N c², bound on the neglected tail) by the finite lag sum over a window of δ (non-overlapping):
     δ = m_j b − m_i a = m_i t (m_i divides m_j), summed in blocks of t. On the diagonal N c² is even in
     δ (stationary increments), so only δ ≥ 0 is computed, the terms at δ > 0 counted twice."""
     reach = _lag_window(memory.model, m_i, m_j)
-    low, high = _lag_range(memory.model, m_i, m_j, K_i, K_j, estimator)
+    low, high = _lag_range(memory.model, m_i, m_j, K_i, K_j, "non-overlapping")
     ratio = m_j // m_i
     diagonal = m_i == m_j and K_i == K_j
     t_first, t_last = 0 if diagonal else -(-low // m_i), high // m_i
@@ -397,7 +395,7 @@ def _pair_sum(
         return _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
     if estimator == "overlapping":
         return _every_lag_sum(engine, m_i, m_j, K_i, K_j), 0.0
-    return _lag_sum(engine, m_i, m_j, K_i, K_j, estimator)
+    return _lag_sum(engine, m_i, m_j, K_i, K_j)
 
 
 def _engine(

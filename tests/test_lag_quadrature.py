@@ -25,8 +25,10 @@ from carousel_theory.lag_quadrature import (
     BLOCK_RATIO,
     GAUSS_POINTS,
     LagModel,
+    _batch_values,
     _gauss_rule,
-    _Pair,
+    _make_pair,
+    _Pairs,
     _plan,
     _values,
     counted_square_sum,
@@ -36,15 +38,9 @@ from carousel_theory.lag_quadrature import (
 from carousel_theory.noise_model import NoiseModel
 
 
-def _pair(m_i: int, m_j: int, K_i: int, K_j: int) -> _Pair:
-    ramps = ramp_positions(m_i, m_j)
-    positions = np.array([q for q, _ in ramps], dtype=np.float64)
-    return _Pair(positions, np.array([w for _, w in ramps], dtype=np.float64), m_i, m_j, K_i, K_j)
-
-
 def _every_lag(model: NoiseModel, m_i: int, m_j: int, length: int) -> float:
     K_i, K_j = length - 2 * m_i + 1, length - 2 * m_j + 1
-    pair = _pair(m_i, m_j, K_i, K_j)
+    pair = _make_pair(m_i, m_j, K_i, K_j)
     lags = np.arange(-(K_i - 1), K_j, dtype=np.float64)
     values, errors = _values(pair, LagModel.of(model), lags)
     assert np.all(errors <= 1e-14 * np.max(np.abs(values)))
@@ -84,7 +80,7 @@ def test_cross_covariance_against_mpmath(d, m_i, m_j):
     model = NoiseModel(sample_rate=1.0, flicker_variance=1.0, flicker_d=float(d))
     span = 2 * m_i + 2 * m_j - 4
     lags = np.array([0, 1, -m_j, 2 * m_i + 40, 17 * max(span, 1) + 2 * m_i + 5, -30 * max(span, 1) - 2 * m_j])
-    pair = _pair(m_i, m_j, 10**6, 10**6)
+    pair = _make_pair(m_i, m_j, 10**6, 10**6)
     values, errors = _values(pair, LagModel.of(model), lags.astype(np.float64))
     triangle_i = [min(k + 1, 2 * m_i - 1 - k) for k in range(2 * m_i - 1)]
     triangle_j = [min(k + 1, 2 * m_j - 1 - k) for k in range(2 * m_j - 1)]
@@ -160,7 +156,8 @@ def test_batched_pairs_equal_each_pair_alone(d, sizes, length, with_ar, with_fli
     lag_model = LagModel.of(model)
     batched = counted_square_sums(lag_model, pairs)
     alone = [counted_square_sum(lag_model, *pair) for pair in pairs]
-    # H is evaluated element by element, so a tabulated value is bit for bit the one a direct call gives.
+    # Each row is reduced in its own order: a batch gives every pair what it gives alone (both sides use
+    # the tabulated H; the table against direct evaluation is test_fourth_sum_table_is_direct_evaluation).
     assert batched == alone
 
 
@@ -190,3 +187,30 @@ def test_plan_covers_every_lag_once(m_i, m_j, length, reach):
         inside = (breakpoints >= first) & (breakpoints <= first + size - 1)
         assert not np.any(inside)
         assert size <= max(1, BLOCK_RATIO * int(distance.min()))
+
+
+@pytest.mark.parametrize("with_ar", [False, True])
+def test_fourth_sum_table_is_direct_evaluation(with_ar):
+    """At the exact lags of many pairs, H gathered from the table of merged argument runs is, bit for bit,
+    H evaluated at each lag (the batch's values do not depend on the table)."""
+    model = NoiseModel(
+        sample_rate=1.0,
+        white_variance=0.5,
+        rrw_variance=1e-6,
+        flicker_variance=1.0,
+        flicker_d=0.3,
+        ar_variance=0.3 if with_ar else 0.0,
+        ar_coefficients=(0.7,) if with_ar else (),
+    )
+    length, sizes = 200_000, [1, 2, 4, 16, 128, 1024]
+    terms = [length - 2 * m + 1 for m in sizes]
+    pairs = [(sizes[i], sizes[j], terms[i], terms[j]) for j in range(len(sizes)) for i in range(j + 1)]
+    lag_model = LagModel.of(model)
+    batch = _Pairs.of([_make_pair(*pair) for pair in pairs])
+    plans = [_plan(*pair, lag_model.reach) for pair in pairs]
+    lags = np.concatenate([exact for exact, _ in plans]).astype(np.float64)
+    owner = np.repeat(np.arange(len(pairs)), [len(exact) for exact, _ in plans])
+    tabulated = _batch_values(batch, lag_model, owner, lags, tabulated=True)
+    direct = _batch_values(batch, lag_model, owner, lags, tabulated=False)
+    np.testing.assert_array_equal(tabulated[0], direct[0])
+    np.testing.assert_array_equal(tabulated[1], direct[1])
