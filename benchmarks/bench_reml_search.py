@@ -10,7 +10,8 @@ For each case it prints the number of passes of the generalized Schur recursion 
 about 0.55 s at n = 10⁵ on the 2-core box), the time of both searches, their ratio, and the two
 estimates of log ρ with their difference beside the bound 4(√ε |log ρ| + 10⁻⁵/3) that the two stopping
 rules together allow. Cases: the three axes of a measured ADIS16405 run at n = 3000, 6000 and 20000
-(``--long`` adds the x axis at n = 10⁵), and seeded simulations of y = b + f + v (TIM 2014 eq. (3)).
+(``--long`` adds the x axis at n = 10⁵), and seeded simulations of y = b + f + v (TIM 2014 eq. (3)),
+two of them white-dominated, where the maximum lies at the upper bound of ρ.
 """
 
 from __future__ import annotations
@@ -103,6 +104,8 @@ def main() -> None:
         (1, 4000, 0.5, 1.0, 0.1),
         (20, 200, 0.35, 2.0, 5.0),
         (1, 2000, 0.7, 1.0, 300.0),
+        (1, 2000, 0.5, 1.0, 1e6),  # white-dominated: the maximum is at the upper bound of ρ
+        (1, 2000, 0.5, 1.0, 1e9),
     ]
     for seed, (count, n, d, driving, white) in enumerate(cases):
         model = BiasModel(d=d, driving_variance=driving, white_variance=white)

@@ -23,11 +23,14 @@ started process, used only as a starting point) gives log ρ₀; three points ar
 downhill by parabolic extrapolation when needed, bracket the maximum; Brent's method then starts
 from that bracket with parabolic steps, and stops by Brent's rule, the one of the former bounded
 search over the whole of ``ratio_bounds`` (x within 2(√ε |x| + RATIO_TOLERANCE/3) of the
-maximiser). On the ADIS16405 x axis at n = 10⁵ this takes 8 passes instead of 13
-(``benchmarks/bench_reml_search.py``). No analytic gradient is used: tr(A⁻¹) and A⁻¹y are not
-by-products of the forward recursion, and carrying derivatives through every rotation would at
-least double the work of a pass (an estimate from its operation count, not a measurement), more
-than the two or three passes a gradient could save in a one-dimensional search.
+maximiser). When the walk reaches a bound of ρ still climbing, the bounded search finishes on the
+strip between that bound and the walk's last interior point. On the ADIS16405 x axis at n = 10⁵ this
+takes 8 passes instead of 13; where the likelihood is very flat (ρ ≳ 10³, the z axis) or the maximum
+is at a bound it can take a few more than the former search (``benchmarks/bench_reml_search.py``).
+No analytic gradient is used: tr(A⁻¹) and A⁻¹y are not by-products of the forward recursion, and
+carrying derivatives through every rotation would at least double the work of a pass (an estimate
+from its operation count, not a measurement), more than the two or three passes a gradient could
+save in a one-dimensional search.
 """
 
 from __future__ import annotations
@@ -199,8 +202,9 @@ def _downhill(objective, near: float, far: float, bound: float, points: tuple[fl
 
 def _bracket(objective: Callable[[float], float], start: float, low: float, high: float, first_step: float):
     """(left, middle, right) with objective(middle) ≤ both ends, walking downhill from ``start``
-    (first points ± ``first_step``, then parabolic extrapolation, :func:`_downhill`); None when the
-    minimum lies at ``low`` or ``high``."""
+    (first points ± ``first_step``, then parabolic extrapolation, :func:`_downhill`); when the walk
+    reaches ``low`` or ``high`` still going down, the strip (bound, last interior point) that holds the
+    minimum instead."""
     middle = min(max(start, low + first_step), high - first_step)
     left, right = middle - first_step, middle + first_step
     while True:
@@ -209,11 +213,11 @@ def _bracket(objective: Callable[[float], float], start: float, low: float, high
         points = (left, middle, right)
         if objective(left) < objective(right):
             if left == low:
-                return None
+                return low, middle
             left, middle, right = _downhill(objective, middle, left, low, points), left, middle
         else:
             if right == high:
-                return None
+                return middle, high
             left, middle, right = middle, right, _downhill(objective, middle, right, high, points)
 
 
@@ -273,19 +277,19 @@ def _maximise_ratio(
     evaluate: Evaluate, d: float, log_bounds: tuple[float, float], start: float, first_step: float
 ) -> float:
     """log ρ maximising the profile at order d: Brent's method from a bracket found around ``start``;
-    on the whole of ``log_bounds`` when the maximum is at a bound or the bounds are too narrow."""
+    by scipy's bounded search on the strip next to a bound when the walk reached it, or on the whole of
+    ``log_bounds`` when they are too narrow for a bracket."""
     from scipy.optimize import minimize_scalar  # slow to import, needed only here
 
     def objective(log_ratio: float) -> float:
         return -evaluate(d, log_ratio)[0]
 
     low, high = log_bounds
-    bracket = _bracket(objective, start, low, high, first_step) if high - low > 4.0 * first_step else None
-    if bracket is not None:
-        return _brent_minimum(objective, *bracket)
-    result = minimize_scalar(
-        objective, bounds=log_bounds, method="bounded", options={"xatol": RATIO_TOLERANCE}
-    )
+    found = _bracket(objective, start, low, high, first_step) if high - low > 4.0 * first_step else None
+    if found is not None and len(found) == 3:
+        return _brent_minimum(objective, *found)
+    strip = log_bounds if found is None else found
+    result = minimize_scalar(objective, bounds=strip, method="bounded", options={"xatol": RATIO_TOLERANCE})
     return float(result.x)
 
 

@@ -296,9 +296,9 @@ def _write_csv_arrow(handle, rows: dict[str, np.ndarray]) -> bool:
     """The forecast table through pyarrow's C++ CSV writer (the ``data`` extra), about 6× faster than
     :func:`_write_csv_text` at 10⁶ rows; False when pyarrow is not installed.
 
-    Floats are written in their shortest exact round-trip form (as ``repr``, though spelled
-    ``0.00001`` where ``repr`` gives ``1e-05``); the index as integers; a value that is not finite as
-    an empty cell."""
+    Floats are written in their shortest exact round-trip form: the significant digits of ``repr``,
+    though the exponent and integer spelling may differ (``0.00001`` for ``1e-05``, ``30`` for ``30.0``);
+    the index as integers; a value that is not finite as an empty cell."""
     try:
         import pyarrow as arrow
         import pyarrow.csv as arrow_csv
