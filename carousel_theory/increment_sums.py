@@ -78,6 +78,7 @@ __all__ = [
     "flicker_fourth_sum_at_distance",
     "flicker_increment_difference",
     "flicker_normalisation",
+    "log_ratio_coefficient",
     "rising_factorial",
     "squared_rising_factorial_sum",
 ]
@@ -206,10 +207,16 @@ def _near_half_ratio(j: np.ndarray, d: float) -> np.ndarray:
 
 
 _s = sp.Symbol("s", positive=True)
-#: e_k(s) of log Γ(j + (1 + s)/2)/Γ(j + (1 − s)/2) = s log j + Σ_k e_k(s) j^{−2k} (module text), k = 1 … 8.
-LOG_RATIO_COEFFICIENTS: tuple[sp.Expr, ...] = tuple(
-    sp.expand(-2 * sp.bernoulli(2 * k + 1, (1 + _s) / 2) / (2 * k * (2 * k + 1))) for k in range(1, 9)
-)
+
+
+def log_ratio_coefficient(k: int) -> sp.Expr:
+    """e_k(s) = −2 B_{2k+1}((1 + s)/2)/(2k(2k + 1)) of log Γ(j + (1 + s)/2)/Γ(j + (1 − s)/2) =
+    s log j + Σ_k e_k(s) j^{−2k} (module text), a polynomial in the symbol s."""
+    return sp.expand(-2 * sp.bernoulli(2 * k + 1, (1 + _s) / 2) / (2 * k * (2 * k + 1)))
+
+
+#: e_1 … e_8 (:func:`log_ratio_coefficient`), the terms the evaluator uses.
+LOG_RATIO_COEFFICIENTS: tuple[sp.Expr, ...] = tuple(log_ratio_coefficient(k) for k in range(1, 9))
 #: (e_k(s) − e_k(2))/(s − 2), polynomials in s: the series of Λ in the module text.
 LOG_RATIO_SLOPES: tuple[sp.Expr, ...] = tuple(
     sp.quo(sp.expand(e - e.subs(_s, 2)), _s - 2, _s) for e in LOG_RATIO_COEFFICIENTS

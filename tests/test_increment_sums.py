@@ -32,6 +32,7 @@ from carousel_theory.increment_sums import (
     finite_fourth_sum,
     flicker_allan_variance_closed,
     flicker_fourth_sum,
+    log_ratio_coefficient,
     rising_factorial,
     squared_rising_factorial_sum,
 )
@@ -228,10 +229,9 @@ def test_squared_rising_factorial_sum_against_every_term_summed(d, count):
 def test_first_omitted_coefficients_of_the_even_series_are_bounded(k, largest):
     # The truncation statement of the evaluator: |e_4(s)| ≤ ¼ and |e_9(s)| ≤ 0.98 for s = 1 + 2d ∈ [1, 3],
     # by the exact extrema of the polynomial (end points and real roots of its derivative).
-    s = sp.Symbol("s", positive=True)
-    coefficient = sp.Poly(sp.expand(-2 * sp.bernoulli(2 * k + 1, (1 + s) / 2) / (2 * k * (2 * k + 1))), s)
+    expression = log_ratio_coefficient(k)
+    (s,) = expression.free_symbols
+    coefficient = sp.Poly(expression, s)
     candidates = [sp.Integer(1), sp.Integer(3)]
     candidates += [root for root in sp.real_roots(coefficient.diff(s)) if 1 <= root <= 3]
     assert max(abs(coefficient.eval(point)).evalf(30) for point in candidates) <= largest
-    if k == 4:
-        assert coefficient == sp.Poly(sp.expand(LOG_RATIO_COEFFICIENTS[3]), s)
