@@ -403,13 +403,24 @@ def _derivative_bounds(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, en
     return lag_model.flicker_variance * bound
 
 
+def _far(
+    pairs: _Pairs, owner: np.ndarray, lags: np.ndarray, reach: int, flicker: bool, nearest: np.ndarray | None = None
+) -> np.ndarray:
+    """Where c comes from the far-tail series: at least FAR support widths and the finite terms' reach
+    (+ 8) from the support, with 1/f in the model."""
+    if not flicker:
+        return np.zeros(len(lags), dtype=bool)
+    nearest = pairs.nearest(owner, lags) if nearest is None else nearest
+    return (nearest >= FAR * pairs.width()[owner]) & (nearest >= max(reach + 8, _NEWTON_TERMS + 4))
+
+
 def _partition(
     pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(x₀, far, direct, near): how c is taken at each lag (:func:`_batch_values`)."""
     nearest, width = pairs.nearest(owner, lags), pairs.width()[owner]
     flicker = bool(lag_model.flicker_variance)
-    far = (nearest >= FAR * width) & (nearest >= max(lag_model.reach + 8, _NEWTON_TERMS + 4)) & flicker
+    far = _far(pairs, owner, lags, lag_model.reach, flicker, nearest)
     # Narrow pairs at integer lags, or at any lag outside the support (where every δ + u keeps one sign
     # and γ_z is analytic).
     direct = ~far & (width <= _DIRECT_WIDTH) & ((lags == np.rint(lags)) | (nearest >= 1)) & flicker
@@ -554,25 +565,137 @@ def _chunked_values(
     return values, errors
 
 
-def _block_sums(
-    pairs: _Pairs, lag_model: LagModel, layout: tuple[np.ndarray, ...]
-) -> tuple[np.ndarray, np.ndarray]:
-    """(Σ over the Gauss blocks of N c², the blocks' error bound) of each pair (module text)."""
-    size = len(pairs.m_i)
-    if not layout:
-        return np.zeros(size), np.zeros(size)
-    nodes, weights, block, block_owner, ends, log_norms = layout
-    owner = block_owner[block]
-    values, errors = _chunked_values(pairs, lag_model, owner, nodes)
-    weighted = weights * pairs.count(owner, nodes)
-    total = np.bincount(owner, weighted * (values * values), minlength=size)
-    bound = np.bincount(owner, weighted * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
-    derivative = _derivative_bounds(pairs, lag_model, block_owner, ends)
-    square_sums = np.bincount(block, weights * values * values, minlength=len(block_owner))
-    largest = np.maximum(pairs.count(block_owner, ends[:, 0]), pairs.count(block_owner, ends[:, 1]))
-    norms = np.exp(log_norms)
-    quadrature = derivative * largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
-    return total, bound + np.bincount(block_owner, quadrature, minlength=size)
+@dataclass(frozen=True)
+class PairBatch:
+    """The pairs of one covariance with all that does not depend on the model's variances or its 1/f
+    order: the exact lags and the Gauss blocks of :func:`_plan` (for the finite terms' ``reach``), the
+    counts N there, and which of them the far-tail series takes (:func:`_partition`, where the finite
+    terms' c is exactly 0: every argument of their γ_z is beyond their reach)."""
+
+    pairs: _Pairs
+    reach: int
+    flicker: bool
+    lag_owner: np.ndarray
+    lags: np.ndarray
+    lag_counts: np.ndarray
+    far_lags: np.ndarray
+    nodes: np.ndarray
+    node_weights: np.ndarray
+    node_block: np.ndarray
+    node_owner: np.ndarray
+    node_counts: np.ndarray
+    far_nodes: np.ndarray
+    block_owner: np.ndarray
+    block_ends: np.ndarray
+    block_largest: np.ndarray
+    block_norms: np.ndarray
+
+    @classmethod
+    def of(cls, pairs: Sequence[tuple[int, int, int, int]], reach: int, flicker: bool) -> PairBatch:
+        """The batch of (m_i, m_j, K_i, K_j) ``pairs`` for terms reaching ``reach`` lags, with 1/f or not."""
+        batch = _Pairs.of([_make_pair(*pair) for pair in pairs])
+        plans = [_plan(*pair, reach) for pair in pairs]
+        lags = np.concatenate([exact for exact, _ in plans]).astype(np.float64)
+        owner = np.repeat(np.arange(len(pairs)), [len(exact) for exact, _ in plans])
+        layout = _block_layout(plans)
+        if not layout:
+            empty, none = np.zeros(0), np.zeros(0, dtype=np.int64)
+            layout = (empty, empty, none, none, np.zeros((0, 2)), empty)
+        nodes, weights, block, block_owner, ends, log_norms = layout
+        node_owner = block_owner[block]
+        largest = np.maximum(batch.count(block_owner, ends[:, 0]), batch.count(block_owner, ends[:, 1]))
+        return cls(
+            batch, reach, flicker, owner, lags, batch.count(owner, lags),
+            _far(batch, owner, lags, reach, flicker), nodes, weights, block, node_owner,
+            weights * batch.count(node_owner, nodes), _far(batch, node_owner, nodes, reach, flicker),
+            block_owner, ends, largest, np.exp(log_norms),
+        )  # fmt: skip
+
+
+@dataclass(frozen=True)
+class TermValues:
+    """c of one term at a batch's exact lags and Gauss nodes, the bounds on the far-tail series' error
+    there, and the bound B on each block's derivative (both zero for a finite term)."""
+
+    lags: np.ndarray
+    lag_errors: np.ndarray
+    nodes: np.ndarray
+    node_errors: np.ndarray
+    derivative: np.ndarray
+
+
+def term_values(batch: PairBatch, lag_model: LagModel) -> TermValues:
+    """:class:`TermValues` of ``lag_model`` (one term, or the whole model) on ``batch``: the values
+    :func:`counted_square_sums` sums, element by element."""
+    pairs = batch.pairs
+    if lag_model.flicker_variance:
+        if lag_model.reach != batch.reach or not batch.flicker:
+            raise ValueError(f"lag_model.reach={lag_model.reach!r}: must be the batch's {batch.reach} with 1/f")
+        values, errors = _batch_values(pairs, lag_model, batch.lag_owner, batch.lags, tabulated=True)
+        node_values, node_errors = _chunked_values(pairs, lag_model, batch.node_owner, batch.nodes)
+        derivative = _derivative_bounds(pairs, lag_model, batch.block_owner, batch.block_ends)
+        return TermValues(values, errors, node_values, node_errors, derivative)
+    values, node_values = np.zeros(len(batch.lags)), np.zeros(len(batch.nodes))
+    kept = ~batch.far_lags
+    if np.any(kept):
+        values[kept] = _tabulated_nine_term_sum(pairs, lag_model, batch.lag_owner[kept], batch.lags[kept])
+    kept = ~batch.far_nodes
+    if np.any(kept):
+        node_values[kept] = _chunked_values(pairs, lag_model, batch.node_owner[kept], batch.nodes[kept])[0]
+    return TermValues(values, np.zeros_like(values), node_values, np.zeros_like(node_values), np.zeros(0))
+
+
+def _combined(arrays: Sequence[np.ndarray], variances: Sequence[float]) -> np.ndarray:
+    """Σ_a θ_a x_a over the terms whose arrays are not empty."""
+    total = np.zeros(0)
+    for array, variance in zip(arrays, variances, strict=True):
+        if len(array):
+            total = variance * array if not len(total) else total + variance * array
+    return total
+
+
+def combined_sums(
+    batch: PairBatch, terms: Sequence[TermValues], variances: Sequence[float]
+) -> list[tuple[float, float]]:
+    """(Σ_δ N c², proved bound on its error) of each pair for c = Σ_a θ_a c_a, θ = ``variances`` of the
+    ``terms`` (module text): the exact lags and the Gauss blocks of the combined values."""
+    size = len(batch.pairs.m_i)
+    values = _combined([t.lags for t in terms], variances)
+    errors = _combined([t.lag_errors for t in terms], variances)
+    counts = batch.lag_counts
+    total = np.bincount(batch.lag_owner, counts * (values * values), minlength=size)
+    bound = np.bincount(batch.lag_owner, counts * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
+    block_total, block_bound = np.zeros(size), np.zeros(size)
+    if len(batch.nodes):
+        values = _combined([t.nodes for t in terms], variances)
+        errors = _combined([t.node_errors for t in terms], variances)
+        weighted, owner = batch.node_counts, batch.node_owner
+        block_total = np.bincount(owner, weighted * (values * values), minlength=size)
+        block_bound = np.bincount(owner, weighted * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
+        derivative = _combined([t.derivative for t in terms], variances)
+        if len(derivative):
+            square_sums = np.bincount(
+                batch.node_block, batch.node_weights * values * values, minlength=len(batch.block_owner)
+            )
+            norms = batch.block_norms
+            quadrature = derivative * batch.block_largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
+            block_bound = block_bound + np.bincount(batch.block_owner, quadrature, minlength=size)
+    return list(zip((total + block_total).tolist(), (bound + block_bound).tolist(), strict=True))
+
+
+def term_gram(batch: PairBatch, terms: Sequence[TermValues]) -> np.ndarray:
+    """G[pair, a, b] = Σ_δ N c_a c_b by the same exact lags and Gauss rules (no bound): Σ N c² of
+    c = Σ_a θ_a c_a is θᵀ G θ, for any θ, without evaluating the terms again."""
+    size, count = len(batch.pairs.m_i), len(terms)
+    gram = np.empty((size, count, count))
+    for a, b in itertools.combinations_with_replacement(range(count), 2):
+        exact = batch.lag_counts * (terms[a].lags * terms[b].lags)
+        total = np.bincount(batch.lag_owner, exact, minlength=size)
+        if len(batch.nodes):
+            nodes = batch.node_counts * (terms[a].nodes * terms[b].nodes)
+            total = total + np.bincount(batch.node_owner, nodes, minlength=size)
+        gram[:, a, b] = gram[:, b, a] = total
+    return gram
 
 
 def counted_square_sums(
@@ -584,13 +707,5 @@ def counted_square_sums(
     value is, bit for bit, the one the pair alone gives."""
     if not pairs:
         return []
-    batch = _Pairs.of([_make_pair(*pair) for pair in pairs])
-    plans = [_plan(*pair, lag_model.reach) for pair in pairs]
-    lags = np.concatenate([exact for exact, _ in plans]).astype(np.float64)
-    owner = np.repeat(np.arange(len(pairs)), [len(exact) for exact, _ in plans])
-    values, errors = _batch_values(batch, lag_model, owner, lags, tabulated=True)
-    counts = batch.count(owner, lags)
-    total = np.bincount(owner, counts * (values * values), minlength=len(pairs))
-    bound = np.bincount(owner, counts * (errors * (2.0 * np.abs(values) + errors)), minlength=len(pairs))
-    block_total, block_bound = _block_sums(batch, lag_model, _block_layout(plans))
-    return list(zip((total + block_total).tolist(), (bound + block_bound).tolist(), strict=True))
+    batch = PairBatch.of(pairs, lag_model.reach, bool(lag_model.flicker_variance))
+    return combined_sums(batch, [term_values(batch, lag_model)], [1.0])
