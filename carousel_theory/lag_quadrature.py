@@ -404,7 +404,12 @@ def _derivative_bounds(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, en
 
 
 def _far(
-    pairs: _Pairs, owner: np.ndarray, lags: np.ndarray, reach: int, flicker: bool, nearest: np.ndarray | None = None
+    pairs: _Pairs,
+    owner: np.ndarray,
+    lags: np.ndarray,
+    reach: int,
+    flicker: bool,
+    nearest: np.ndarray | None = None,
 ) -> np.ndarray:
     """Where c comes from the far-tail series: at least FAR support widths and the finite terms' reach
     (+ 8) from the support, with 1/f in the model."""
@@ -418,9 +423,15 @@ def _partition(
     pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(x₀, far, direct, near): how c is taken at each lag (:func:`_batch_values`)."""
+    return _partition_for(pairs, owner, lags, lag_model.reach, bool(lag_model.flicker_variance))
+
+
+def _partition_for(
+    pairs: _Pairs, owner: np.ndarray, lags: np.ndarray, reach: int, flicker: bool
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_partition` for finite terms reaching ``reach`` lags, with 1/f or not."""
     nearest, width = pairs.nearest(owner, lags), pairs.width()[owner]
-    flicker = bool(lag_model.flicker_variance)
-    far = _far(pairs, owner, lags, lag_model.reach, flicker, nearest)
+    far = _far(pairs, owner, lags, reach, flicker, nearest)
     # Narrow pairs at integer lags, or at any lag outside the support (where every δ + u keeps one sign
     # and γ_z is analytic).
     direct = ~far & (width <= _DIRECT_WIDTH) & ((lags == np.rint(lags)) | (nearest >= 1)) & flicker
@@ -433,12 +444,27 @@ def _nine_term_sum(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: 
     return np.einsum("ij,ij->i", values, pairs.weights[owner])
 
 
-def _tabulated_nine_term_sum(
-    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
-) -> np.ndarray:
-    """:func:`_nine_term_sum` at integer ``lags`` sorted within each pair: runs of consecutive lags give
-    runs of arguments q − δ, merged across pairs (octave pairs share most of them); H is evaluated once
-    on their union and gathered by index (element by element, so each value is the direct one)."""
+@dataclass(frozen=True)
+class _Gathered:
+    """c = Σ_q w_q H(q − δ) at many lags as H at distinct ``arguments`` and, per lag, the ``index`` of its
+    nine arguments among them with the ``weights`` w_q (a structure of the pairs alone, kept by
+    :class:`PairBatch`); :meth:`values` is element by element the direct nine-term sum."""
+
+    arguments: np.ndarray
+    index: np.ndarray
+    weights: np.ndarray
+
+    def values(self, lag_model: LagModel) -> np.ndarray:
+        if not len(self.index):
+            return np.zeros(0)
+        return np.einsum("ij,ij->i", lag_model.fourth_sum(self.arguments)[self.index], self.weights)
+
+
+def _tabulated_gather(pairs: _Pairs, owner: np.ndarray, lags: np.ndarray) -> _Gathered:
+    """:class:`_Gathered` at integer ``lags`` sorted within each pair: runs of consecutive lags give runs
+    of arguments q − δ, merged across pairs (octave pairs share most of them) into the distinct ones."""
+    if not len(lags):
+        return _Gathered(np.zeros(0), np.zeros((0, 9), dtype=np.int64), np.zeros((0, 9)))
     breaks = np.flatnonzero((np.diff(lags) != 1) | (np.diff(owner) != 0))
     starts, stops = np.concatenate(([0], breaks + 1)), np.concatenate((breaks, [len(lags) - 1]))
     positions = pairs.positions[owner[starts]]
@@ -447,11 +473,29 @@ def _tabulated_nine_term_sum(
     lengths = (last - first + 1).astype(np.int64)
     offsets = np.concatenate(([0], np.cumsum(lengths)[:-1]))
     keys = np.repeat(first - offsets, lengths) + np.arange(int(lengths.sum()))
-    values = lag_model.fourth_sum(keys.astype(np.float64))
     run = np.searchsorted(first, lowest, side="right") - 1  # the merged run holding each argument run
     base = (offsets[run] - first[run] + positions.ravel()).reshape(positions.shape)  # q − δ ↦ base − δ
     index = base[np.repeat(np.arange(len(starts)), stops - starts + 1)] - lags[:, None]
-    return np.einsum("ij,ij->i", values[index.astype(np.int64)], pairs.weights[owner])
+    return _Gathered(keys.astype(np.float64), index.astype(np.int64), pairs.weights[owner])
+
+
+def _tabulated_nine_term_sum(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> np.ndarray:
+    """:func:`_nine_term_sum` at integer ``lags`` sorted within each pair, H evaluated once on the union of
+    their arguments (:func:`_tabulated_gather`; element by element, so each value is the direct one)."""
+    return _tabulated_gather(pairs, owner, lags).values(lag_model)
+
+
+def _direct_values(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray) -> np.ndarray:
+    """c at lags of narrow pairs: the 1/f part by :func:`_direct_flicker`, the finite part by the nine-term
+    sum."""
+    finite = replace(lag_model, flicker_variance=0.0)
+    flicker = np.empty(len(lags))
+    for row in np.unique(owner).tolist():
+        mine = owner == row
+        flicker[mine] = _direct_flicker(int(pairs.m_i[row]), int(pairs.m_j[row]), lag_model, lags[mine])
+    return flicker + _nine_term_sum(pairs, finite, owner, lags)
 
 
 def _batch_values(
@@ -460,19 +504,32 @@ def _batch_values(
     """(c, bound on its error) at ``lags`` of the pairs ``owner``: the Newton series in the far tail;
     elsewhere the nine-term sum of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u). ``tabulated``:
     the lags are integers, sorted within each pair, and H is tabulated once for all of them."""
-    nearest, far, direct, near = _partition(pairs, lag_model, owner, lags)
+    parts = _partition(pairs, lag_model, owner, lags)
+    near = parts[3]
+    if not np.any(near):
+        return _parted_values(pairs, lag_model, owner, lags, parts, None)
+    nine_term_sum = _tabulated_nine_term_sum if tabulated else _nine_term_sum
+    return _parted_values(
+        pairs, lag_model, owner, lags, parts, nine_term_sum(pairs, lag_model, owner[near], lags[near])
+    )
+
+
+def _parted_values(
+    pairs: _Pairs,
+    lag_model: LagModel,
+    owner: np.ndarray,
+    lags: np.ndarray,
+    parts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    near_values: np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """(c, bound on its error) by the partition ``parts`` of :func:`_partition`, the nine-term sums at its
+    near lags given."""
+    nearest, far, direct, near = parts
     values, errors = np.empty(len(lags)), np.zeros(len(lags))
     if np.any(direct):
-        finite = replace(lag_model, flicker_variance=0.0)
-        chosen_owner, chosen = owner[direct], lags[direct]
-        flicker = np.empty(len(chosen))
-        for row in np.unique(chosen_owner).tolist():
-            mine = chosen_owner == row
-            flicker[mine] = _direct_flicker(int(pairs.m_i[row]), int(pairs.m_j[row]), lag_model, chosen[mine])
-        values[direct] = flicker + _nine_term_sum(pairs, finite, chosen_owner, chosen)
-    if np.any(near):
-        nine_term_sum = _tabulated_nine_term_sum if tabulated else _nine_term_sum
-        values[near] = nine_term_sum(pairs, lag_model, owner[near], lags[near])
+        values[direct] = _direct_values(pairs, lag_model, owner[direct], lags[direct])
+    if near_values is not None:
+        values[near] = near_values
     if np.any(far):
         values[far], errors[far] = _newton_series(pairs, lag_model, owner[far], nearest[far])
     return values, errors
@@ -590,6 +647,27 @@ class PairBatch:
     block_largest: np.ndarray
     block_norms: np.ndarray
 
+    @functools.cached_property
+    def lag_parts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """:func:`_partition` of the exact lags."""
+        return _partition_for(self.pairs, self.lag_owner, self.lags, self.reach, self.flicker)
+
+    @functools.cached_property
+    def lag_gather(self) -> _Gathered:
+        """:func:`_tabulated_gather` at the exact lags taken by the nine-term sum."""
+        near = self.lag_parts[3]
+        return _tabulated_gather(self.pairs, self.lag_owner[near], self.lags[near])
+
+    @functools.cached_property
+    def node_parts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """:func:`_partition` of the Gauss nodes."""
+        return _partition_for(self.pairs, self.node_owner, self.nodes, self.reach, self.flicker)
+
+    @functools.cached_property
+    def node_gather(self) -> _Gathered:
+        """:func:`_gridded_gather` at the Gauss nodes taken by the nine-term sum."""
+        return _gridded_gather(self, self.node_parts[3])
+
     @classmethod
     def of(cls, pairs: Sequence[tuple[int, int, int, int]], reach: int, flicker: bool) -> PairBatch:
         """The batch of (m_i, m_j, K_i, K_j) ``pairs`` for terms reaching ``reach`` lags, with 1/f or not."""
@@ -628,21 +706,40 @@ def term_values(batch: PairBatch, lag_model: LagModel) -> TermValues:
     """:class:`TermValues` of ``lag_model`` (one term, or the whole model) on ``batch``: the values
     :func:`counted_square_sums` sums, element by element."""
     pairs = batch.pairs
-    if lag_model.flicker_variance:
-        if lag_model.reach != batch.reach or not batch.flicker:
-            raise ValueError(f"lag_model.reach={lag_model.reach!r}: must be the batch's {batch.reach} with 1/f")
-        values, errors = _batch_values(pairs, lag_model, batch.lag_owner, batch.lags, tabulated=True)
-        node_values, node_errors = _chunked_values(pairs, lag_model, batch.node_owner, batch.nodes)
-        derivative = _derivative_bounds(pairs, lag_model, batch.block_owner, batch.block_ends)
-        return TermValues(values, errors, node_values, node_errors, derivative)
-    values, node_values = np.zeros(len(batch.lags)), np.zeros(len(batch.nodes))
-    kept = ~batch.far_lags
-    if np.any(kept):
-        values[kept] = _tabulated_nine_term_sum(pairs, lag_model, batch.lag_owner[kept], batch.lags[kept])
-    kept = ~batch.far_nodes
-    if np.any(kept):
-        node_values[kept] = _chunked_values(pairs, lag_model, batch.node_owner[kept], batch.nodes[kept])[0]
-    return TermValues(values, np.zeros_like(values), node_values, np.zeros_like(node_values), np.zeros(0))
+    if lag_model.reach != batch.reach or bool(lag_model.flicker_variance) != batch.flicker:
+        raise ValueError(
+            f"lag_model.reach={lag_model.reach!r}: must be the batch's reach {batch.reach}, with 1/f"
+        )
+    values, errors = _parted_values(
+        pairs, lag_model, batch.lag_owner, batch.lags, batch.lag_parts, batch.lag_gather.values(lag_model)
+    )
+    node_values, node_errors = _parted_values(
+        pairs, lag_model, batch.node_owner, batch.nodes, batch.node_parts, batch.node_gather.values(lag_model)
+    )
+    derivative = _derivative_bounds(pairs, lag_model, batch.block_owner, batch.block_ends)
+    return TermValues(values, errors, node_values, node_errors, derivative)
+
+
+def _gridded_gather(batch: PairBatch, chosen: np.ndarray) -> _Gathered:
+    """:class:`_Gathered` at the ``chosen`` Gauss nodes. A node δ = f + o (f the block's first lag, o the
+    rule's offset) has the arguments q − δ = (q − f) − o; blocks of the same length share their offsets
+    and, grown from breakpoints at the same distances, most of their q − f (octave pairs: about one
+    (block, q) in nine is new), so H is needed only on the distinct (q − f, length) at the p offsets."""
+    pairs, points = batch.pairs, GAUSS_POINTS
+    if not np.any(chosen):
+        return _Gathered(np.zeros(0), np.zeros((0, 9), dtype=np.int64), np.zeros((0, 9)))
+    blocks = np.flatnonzero(np.bincount(batch.node_block[chosen], minlength=len(batch.block_owner)))
+    first = batch.block_ends[blocks, 0]
+    length = (batch.block_ends[blocks, 1] - first + 1).astype(np.int64)
+    shift = (pairs.positions[batch.block_owner[blocks]] - first[:, None]).astype(np.int64)
+    keys = ((shift + (1 << 40)) << 22) | length[:, None]  # (q − f, length) as one integer
+    distinct, inverse = np.unique(keys.ravel(), return_inverse=True)
+    lengths, which = np.unique(distinct & ((1 << 22) - 1), return_inverse=True)
+    offsets = np.stack([_gauss_rule(int(size), points)[0] for size in lengths.tolist()])[which]
+    arguments = ((distinct >> 22) - (1 << 40)).astype(np.float64)[:, None] - offsets
+    where = np.searchsorted(blocks, batch.node_block[chosen])
+    index = inverse.reshape(keys.shape)[where] * points + (np.flatnonzero(chosen) % points)[:, None]
+    return _Gathered(arguments.ravel(), index, pairs.weights[batch.node_owner[chosen]])
 
 
 def _combined(arrays: Sequence[np.ndarray], variances: Sequence[float]) -> np.ndarray:
@@ -671,31 +768,17 @@ def combined_sums(
         errors = _combined([t.node_errors for t in terms], variances)
         weighted, owner = batch.node_counts, batch.node_owner
         block_total = np.bincount(owner, weighted * (values * values), minlength=size)
-        block_bound = np.bincount(owner, weighted * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
+        error_terms = weighted * (errors * (2.0 * np.abs(values) + errors))
+        block_bound = np.bincount(owner, error_terms, minlength=size)
         derivative = _combined([t.derivative for t in terms], variances)
         if len(derivative):
             square_sums = np.bincount(
                 batch.node_block, batch.node_weights * values * values, minlength=len(batch.block_owner)
             )
-            norms = batch.block_norms
-            quadrature = derivative * batch.block_largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
+            norms, largest = batch.block_norms, batch.block_largest
+            quadrature = derivative * largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
             block_bound = block_bound + np.bincount(batch.block_owner, quadrature, minlength=size)
     return list(zip((total + block_total).tolist(), (bound + block_bound).tolist(), strict=True))
-
-
-def term_gram(batch: PairBatch, terms: Sequence[TermValues]) -> np.ndarray:
-    """G[pair, a, b] = Σ_δ N c_a c_b by the same exact lags and Gauss rules (no bound): Σ N c² of
-    c = Σ_a θ_a c_a is θᵀ G θ, for any θ, without evaluating the terms again."""
-    size, count = len(batch.pairs.m_i), len(terms)
-    gram = np.empty((size, count, count))
-    for a, b in itertools.combinations_with_replacement(range(count), 2):
-        exact = batch.lag_counts * (terms[a].lags * terms[b].lags)
-        total = np.bincount(batch.lag_owner, exact, minlength=size)
-        if len(batch.nodes):
-            nodes = batch.node_counts * (terms[a].nodes * terms[b].nodes)
-            total = total + np.bincount(batch.node_owner, nodes, minlength=size)
-        gram[:, a, b] = gram[:, b, a] = total
-    return gram
 
 
 def counted_square_sums(
@@ -707,5 +790,13 @@ def counted_square_sums(
     value is, bit for bit, the one the pair alone gives."""
     if not pairs:
         return []
-    batch = PairBatch.of(pairs, lag_model.reach, bool(lag_model.flicker_variance))
+    batch = pair_batch(
+        tuple(tuple(pair) for pair in pairs), lag_model.reach, bool(lag_model.flicker_variance)
+    )
     return combined_sums(batch, [term_values(batch, lag_model)], [1.0])
+
+
+@functools.lru_cache(maxsize=4)
+def pair_batch(pairs: tuple[tuple[int, int, int, int], ...], reach: int, flicker: bool) -> PairBatch:
+    """:meth:`PairBatch.of`, kept for the next covariance of the same pairs (a fit's iterations)."""
+    return PairBatch.of(pairs, reach, flicker)

@@ -421,21 +421,30 @@ def _pair_sums(
     return [_pair_sum(model, engine, *pair, estimator) for pair in arguments]
 
 
+def _upper_pairs(count: int) -> list[tuple[int, int]]:
+    return [(i, j) for j in range(count) for i in range(j + 1)]
+
+
+def _assembled(
+    sizes: np.ndarray, terms: np.ndarray, sums: Sequence[tuple[float, float]]
+) -> tuple[np.ndarray, np.ndarray]:
+    """(Σ N c² / scale, error bound / scale) as matrices from the sums of :func:`_upper_pairs`."""
+    count = len(sizes)
+    covariance, bound = np.empty((count, count)), np.zeros((count, count))
+    for (i, j), (total, tail) in zip(_upper_pairs(count), sums, strict=True):
+        scale = 2.0 * float(sizes[i]) ** 2 * float(sizes[j]) ** 2 * int(terms[i]) * int(terms[j])
+        covariance[i, j] = covariance[j, i] = total / scale
+        bound[i, j] = bound[j, i] = tail / scale
+    return covariance, bound
+
+
 def _covariance_matrix(
     model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
 ) -> tuple[np.ndarray, np.ndarray]:
     """(Σ N c² / scale, error bound / scale) for every pair of non-decreasing ``sizes``."""
     terms = _terms_count(sizes, length, estimator)
-    count = len(sizes)
-    pairs = [(i, j) for j in range(count) for i in range(j + 1)]
-    covariance, bound = np.empty((count, count)), np.zeros((count, count))
-    for (i, j), (total, tail) in zip(
-        pairs, _pair_sums(model, sizes, terms, length, estimator, pairs), strict=True
-    ):
-        scale = 2.0 * float(sizes[i]) ** 2 * float(sizes[j]) ** 2 * int(terms[i]) * int(terms[j])
-        covariance[i, j] = covariance[j, i] = total / scale
-        bound[i, j] = bound[j, i] = tail / scale
-    return covariance, bound
+    pairs = _upper_pairs(len(sizes))
+    return _assembled(sizes, terms, _pair_sums(model, sizes, terms, length, estimator, pairs))
 
 
 def allan_estimate_covariance(
@@ -459,8 +468,19 @@ def allan_estimate_covariance(
             "larger ones (use octave τ)"
         )
     order = np.argsort(sizes, kind="stable")  # summed in increasing τ (the window of A_j covers m_i ≤ m_j)
-    ascending, inverse = sizes[order], np.argsort(order)
-    covariance, bound = _covariance_matrix(model, ascending, int(length), estimator)
+    covariance, bound = _covariance_matrix(model, sizes[order], int(length), estimator)
+    return _in_given_order(model, sizes, covariance, bound, np.argsort(order), estimator)
+
+
+def _in_given_order(
+    model: NoiseModel,
+    sizes: np.ndarray,
+    covariance: np.ndarray,
+    bound: np.ndarray,
+    inverse: np.ndarray,
+    estimator: str,
+) -> TauCovariance:
+    """The :class:`TauCovariance` of matrices in ascending τ, put back in the order of ``sizes``."""
     covariance, bound = covariance[np.ix_(inverse, inverse)], bound[np.ix_(inverse, inverse)]
     allan = model.allan_variance(sizes)
     edf = 2.0 * allan**2 / np.diag(covariance)
