@@ -73,7 +73,7 @@ from carousel_theory.increment_sums import (
     flicker_normalisation,
     rising_factorial,
 )
-from carousel_theory.noise_model import NoiseModel, increment_autocovariance
+from carousel_theory.noise_model import NoiseModel, ar_increment_reach, increment_autocovariance
 
 __all__ = [
     "BLOCK_RATIO",
@@ -115,7 +115,7 @@ class LagModel:
     @classmethod
     def of(cls, model: NoiseModel) -> LagModel:
         terms = model.terms()
-        reach = max(3, _ar_lags(model)) if "ar" in terms else 3
+        reach = max(3, ar_increment_reach(tuple(model.ar_coefficients))) if "ar" in terms else 3
         gamma = np.zeros(reach + 1)
         for name in ("white", "rrw", "quantization", "ar"):
             if name in terms:
@@ -138,12 +138,6 @@ class LagModel:
         if self.flicker_variance:
             result += self.flicker_variance * flicker_fourth_sum_at_distance(distance, self.flicker_d)
         return result
-
-
-def _ar_lags(model: NoiseModel) -> int:
-    from carousel_theory.noise_model import _ar_lags as lags
-
-    return lags(tuple(model.ar_coefficients))
 
 
 def _cubic(lag_model: LagModel, x: np.ndarray) -> np.ndarray:
@@ -476,7 +470,7 @@ def _tabulated_gather(pairs: _Pairs, owner: np.ndarray, lags: np.ndarray) -> _Ga
     run = np.searchsorted(first, lowest, side="right") - 1  # the merged run holding each argument run
     base = (offsets[run] - first[run] + positions.ravel()).reshape(positions.shape)  # q − δ ↦ base − δ
     index = base[np.repeat(np.arange(len(starts)), stops - starts + 1)] - lags[:, None]
-    return _Gathered(keys.astype(np.float64), index.astype(np.int64), pairs.weights[owner])
+    return _Gathered(keys.astype(np.float64), index.astype(np.int32), pairs.weights[owner])
 
 
 def _tabulated_nine_term_sum(
@@ -739,7 +733,7 @@ def _gridded_gather(batch: PairBatch, chosen: np.ndarray) -> _Gathered:
     arguments = ((distinct >> 22) - (1 << 40)).astype(np.float64)[:, None] - offsets
     where = np.searchsorted(blocks, batch.node_block[chosen])
     index = inverse.reshape(keys.shape)[where] * points + (np.flatnonzero(chosen) % points)[:, None]
-    return _Gathered(arguments.ravel(), index, pairs.weights[batch.node_owner[chosen]])
+    return _Gathered(arguments.ravel(), index.astype(np.int32), pairs.weights[batch.node_owner[chosen]])
 
 
 def _combined(arrays: Sequence[np.ndarray], variances: Sequence[float]) -> np.ndarray:
@@ -796,7 +790,10 @@ def counted_square_sums(
     return combined_sums(batch, [term_values(batch, lag_model)], [1.0])
 
 
-@functools.lru_cache(maxsize=4)
+@functools.lru_cache(maxsize=2)
 def pair_batch(pairs: tuple[tuple[int, int, int, int], ...], reach: int, flicker: bool) -> PairBatch:
-    """:meth:`PairBatch.of`, kept for the next covariance of the same pairs (a fit's iterations)."""
-    return PairBatch.of(pairs, reach, flicker)
+    """:meth:`PairBatch.of` with its gathers built, kept for the next covariance of the same pairs (a fit's
+    iterations)."""
+    batch = PairBatch.of(pairs, reach, flicker)
+    _ = (batch.lag_gather, batch.node_gather)
+    return batch

@@ -63,7 +63,11 @@ import sympy as sp
 from carousel_theory import symbols
 from carousel_theory.increment_sums import flicker_increment_difference
 from carousel_theory.lag_quadrature import LagModel, counted_square_sum, counted_square_sums, ramp_positions
-from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, unit_flicker_increment_autocovariance
+from carousel_theory.noise_model import (
+    NoiseModel,
+    ar_increment_reach,
+    unit_flicker_increment_autocovariance,
+)
 
 __all__ = [
     "FLICKER_REACH",
@@ -213,15 +217,8 @@ def _lag_window(model: NoiseModel, m_i: int, m_j: int) -> int:
     if "flicker" in terms:
         reach = FLICKER_REACH * (m_i + m_j) + 64
     if "ar" in terms:
-        reach = max(reach, _ar_reach(tuple(model.ar_coefficients)))
+        reach = max(reach, ar_increment_reach(tuple(model.ar_coefficients)))
     return reach
-
-
-@functools.lru_cache(maxsize=64)
-def _ar_reach(coefficients: tuple[float, ...]) -> int:
-    """Lags beyond which the AR envelope ρ^k is below AR_TRUNCATION (ρ the largest root modulus)."""
-    rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -np.asarray(coefficients)))))))
-    return int(math.log(AR_TRUNCATION) / math.log(rho)) + len(coefficients) + 2 if rho > 0 else 0
 
 
 def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, count: int) -> float:
@@ -279,7 +276,7 @@ class _LongMemory:
             extent = max(extent, 2 * m_i - 2 - first + 1, last + 2 * m_j - 2 + 1)
         terms = model.terms()
         # The other terms' γ_z vanish beyond the AR envelope's reach (values below do not depend on lags).
-        finite = 4 + (_ar_reach(tuple(model.ar_coefficients)) if "ar" in terms else 0)
+        finite = 4 + (ar_increment_reach(tuple(model.ar_coefficients)) if "ar" in terms else 0)
         self.scale: float | None = None
         if "flicker" not in terms:
             self.gamma = model.increment_autocovariance(min(extent, finite))
