@@ -50,6 +50,15 @@ evaluated once on their union and gathered by the run's offset. Everything is el
 each row is reduced in its own order, so each pair's sum and bound are, bit for bit, those of the pair
 alone (:func:`counted_square_sum` is the batch of one).
 
+What does not depend on the model's variances or its d — the plans, the partition, the union of the
+exact lags' integer arguments and the index of each lag's nine arguments in it — is a
+:class:`PairBatch`, kept (:func:`pair_batch`) for the next covariance of the same pairs, so that a fit's
+iterations pay for it once. At the Gauss nodes H is likewise evaluated once per distinct argument: a
+node δ = f + o of a block starting at f has the arguments (q − f) − o, and blocks grown from breakpoints
+at equal distances share their rows (q − f, block length) — for octave pairs about one in nine is new.
+:func:`term_values` (the values of one model, or of one term) and :func:`combined_sums` (Σ N c² and the
+bound for c = Σ_a θ_a c_a) are the two halves of :func:`counted_square_sums`.
+
 Rounding is not in the bound: where the support is wider, the nine-term sum of H loses about (m_j/m_i)²
 ulps; the tests hold the whole to the bound plus 1e-11 relative.
 """
@@ -756,7 +765,8 @@ def combined_sums(
     counts = batch.lag_counts
     total = np.bincount(batch.lag_owner, counts * (values * values), minlength=size)
     bound = np.bincount(batch.lag_owner, counts * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
-    block_total, block_bound = np.zeros(size), np.zeros(size)
+    block_total: np.ndarray = np.zeros(size)
+    block_bound: np.ndarray = np.zeros(size)
     if len(batch.nodes):
         values = _combined([t.nodes for t in terms], variances)
         errors = _combined([t.node_errors for t in terms], variances)

@@ -55,15 +55,9 @@ def _every_lag(model: NoiseModel, m_i: int, m_j: int, length: int) -> float:
     return float(np.dot(pair.count(lags), values * values))
 
 
-@given(
-    d=st.floats(min_value=0.02, max_value=0.98),
-    m_i=st.sampled_from([1, 2, 3, 8, 50, 256]),
-    ratio=st.sampled_from([1, 2, 4, 16]),
-    length=st.integers(min_value=5_000, max_value=60_000),
-    with_ar=st.booleans(),
-)
-def test_gauss_blocks_equal_every_lag_summed_within_the_bound(d, m_i, ratio, length, with_ar):
-    model = NoiseModel(
+def _flicker_model(d: float, with_ar: bool) -> NoiseModel:
+    """White + RRW + 1/f of order d, with AR(1) short noise or not."""
+    return NoiseModel(
         sample_rate=1.0,
         white_variance=0.5,
         rrw_variance=1e-6,
@@ -72,6 +66,17 @@ def test_gauss_blocks_equal_every_lag_summed_within_the_bound(d, m_i, ratio, len
         ar_variance=0.3 if with_ar else 0.0,
         ar_coefficients=(0.7,) if with_ar else (),
     )
+
+
+@given(
+    d=st.floats(min_value=0.02, max_value=0.98),
+    m_i=st.sampled_from([1, 2, 3, 8, 50, 256]),
+    ratio=st.sampled_from([1, 2, 4, 16]),
+    length=st.integers(min_value=5_000, max_value=60_000),
+    with_ar=st.booleans(),
+)
+def test_gauss_blocks_equal_every_lag_summed_within_the_bound(d, m_i, ratio, length, with_ar):
+    model = _flicker_model(d, with_ar)
     m_j = m_i * ratio
     assume(3 * m_j <= length)  # at least three clusters, as the fit requires
     K_i, K_j = length - 2 * m_i + 1, length - 2 * m_j + 1
@@ -230,15 +235,7 @@ def test_fourth_sum_table_is_direct_evaluation(with_ar):
     with_ar=st.booleans(),
 )
 def test_gridded_node_values_equal_the_nine_term_sum(d, length, with_ar):
-    model = NoiseModel(
-        sample_rate=1.0,
-        white_variance=0.5,
-        rrw_variance=1e-6,
-        flicker_variance=1.0,
-        flicker_d=d,
-        ar_variance=0.3 if with_ar else 0.0,
-        ar_coefficients=(0.7,) if with_ar else (),
-    )
+    model = _flicker_model(d, with_ar)
     sizes = [2**k for k in range(14) if 3 * 2**k <= length]
     terms = [length - 2 * m + 1 for m in sizes]
     pairs = [(sizes[i], sizes[j], terms[i], terms[j]) for j in range(len(sizes)) for i in range(j + 1)]
