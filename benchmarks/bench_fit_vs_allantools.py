@@ -10,8 +10,8 @@ at 100 Hz is drawn (:func:`carousel_theory.simulate.sample_noise`). Timed, once 
 with each requested component set (the fit includes its own overlapping Allan variance). Prints the
 wall times, the ratio fit / allantools (the target is ≤ 3), and the same ratio of CPU times of this
 process (steadier on a shared machine). With ``--breakdown`` each fit is run once more and its CPU time is
-split into the τ-covariances (planning of the pairs, Gauss blocks, exact lags and the rest) and
-everything else.
+split into the τ-covariances (the pairs' structure, the values at exact lags and Gauss nodes, the sums
+and the rest) and everything else.
 
 Then, at ``--dense-size`` samples, the covariance of the Allan variance estimates across octave τ from
 :func:`carousel_theory.tau_covariance.allan_estimate_covariance` is compared with the dense O(n)-per-pair
@@ -132,21 +132,23 @@ def _clocked(module: object, name: str, spent: dict[str, float]) -> Iterator[Non
 
 
 def _breakdown(y: np.ndarray, components: tuple[str, ...]) -> None:
-    """Where the fit's CPU time goes (a second fit of the same axis, the lag plans' cache emptied first so
-    that planning is counted as on a first call; modules already imported): the τ-covariances, and within
-    them the planning of the pairs, the Gauss blocks, and the exact lags with the rest."""
+    """Where the fit's CPU time goes (a second fit of the same axis, the lag plans' and the pair batches'
+    caches emptied first so that planning is counted as on a first call; modules already imported): the
+    τ-covariances, and within them the pairs' structure (plans, partitions, gathers; once per record),
+    the terms' values at the exact lags and Gauss nodes (each covariance), and the sums with the rest."""
     lag_quadrature._plan.cache_clear()
+    lag_quadrature.pair_batch.cache_clear()
     spent: dict[str, float] = {}
     with contextlib.ExitStack() as stack:
         stack.enter_context(_clocked(fitting, "allan_estimate_covariance", spent))
-        stack.enter_context(_clocked(lag_quadrature, "_plan", spent))
-        stack.enter_context(_clocked(lag_quadrature, "_block_sums", spent))
+        stack.enter_context(_clocked(lag_quadrature, "pair_batch", spent))
+        stack.enter_context(_clocked(lag_quadrature, "term_values", spent))
         total = _timed_both(lambda: fit_noise_model(y, 100.0, components))[1]
     covariance = spent.get("allan_estimate_covariance", 0.0)
-    plan, blocks = spent.get("_plan", 0.0), spent.get("_block_sums", 0.0)
+    batch, values = spent.get("pair_batch", 0.0), spent.get("term_values", 0.0)
     print(
-        f"{'':>10} {'CPU breakdown':>22}: fit {total:.3f} s = τ-covariances {covariance:.3f} s (planning "
-        f"{plan:.3f}, Gauss blocks {blocks:.3f}, exact lags and the rest {covariance - plan - blocks:.3f}) "
+        f"{'':>10} {'CPU breakdown':>22}: fit {total:.3f} s = τ-covariances {covariance:.3f} s (pairs' "
+        f"structure {batch:.3f}, values {values:.3f}, sums and the rest {covariance - batch - values:.3f}) "
         f"+ everything else {total - covariance:.3f} s"
     )
 

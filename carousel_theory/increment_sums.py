@@ -115,9 +115,7 @@ def rising_factorial(a: Any, step: float) -> np.ndarray:
     if not np.all(large):
         result[~large] = special.poch(a[~large], step)
     if 1.0 <= step <= 3.0:  # the even series of the module text, w = a + (step − 1)/2 ≥ 16
-        middle = a[large] + (step - 1.0) / 2.0
-        series = _even_series(_log_ratio_coefficients(step), middle)
-        result[large] = np.exp(step * np.log(middle) + series)
+        result[large] = _even_ratio(a[large] + (step - 1.0) / 2.0, step)
         return result
     for low, high, count in ((_STIRLING_FROM, 1e3, len(_STIRLING)), (1e3, np.inf, 3)):
         # Above a = 1000 three terms leave less than 1e-24 (the fourth is B₈/56 · a⁻⁷).
@@ -264,7 +262,15 @@ def _large_argument_ratio(j: np.ndarray, d: float, near_half: bool) -> np.ndarra
     if near_half:
         slope = logarithm + _even_series(_log_ratio_slopes(s), j)
         return (j * j - 0.25) * 2.0 * slope * special.exprel(2.0 * (d - 0.5) * slope)
-    return np.exp(s * logarithm + _even_series(_log_ratio_coefficients(s), j)) / (d - 0.5)
+    return _even_ratio(j, s, logarithm) / (d - 0.5)
+
+
+def _even_ratio(middle: np.ndarray, step: float, logarithm: np.ndarray | None = None) -> np.ndarray:
+    """Γ(w + (1 + step)/2)/Γ(w + (1 − step)/2) = exp(step log w + Σ_k e_k(step) w^{−2k}) at w = ``middle``
+    ≥ 16, 1 ≤ step ≤ 3 (module text; :func:`rising_factorial` at a = w − (step − 1)/2 and F(j) at w = j);
+    ``logarithm`` is log w when the caller has it."""
+    logarithm = np.log(middle) if logarithm is None else logarithm
+    return np.exp(step * logarithm + _even_series(_log_ratio_coefficients(step), middle))
 
 
 def flicker_fourth_sum(x: Any, d: float) -> np.ndarray:

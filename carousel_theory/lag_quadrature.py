@@ -50,6 +50,15 @@ evaluated once on their union and gathered by the run's offset. Everything is el
 each row is reduced in its own order, so each pair's sum and bound are, bit for bit, those of the pair
 alone (:func:`counted_square_sum` is the batch of one).
 
+What does not depend on the model's variances or its d — the plans, the partition, the union of the
+exact lags' integer arguments and the index of each lag's nine arguments in it — is a
+:class:`PairBatch`, kept (:func:`pair_batch`) for the next covariance of the same pairs, so that a fit's
+iterations pay for it once. At the Gauss nodes H is likewise evaluated once per distinct argument: a
+node δ = f + o of a block starting at f has the arguments (q − f) − o, and blocks grown from breakpoints
+at equal distances share their rows (q − f, block length) — for octave pairs about one in nine is new.
+:func:`term_values` (the values of one model, or of one term) and :func:`combined_sums` (Σ N c² and the
+bound for c = Σ_a θ_a c_a) are the two halves of :func:`counted_square_sums`.
+
 Rounding is not in the bound: where the support is wider, the nine-term sum of H loses about (m_j/m_i)²
 ulps; the tests hold the whole to the bound plus 1e-11 relative.
 """
@@ -73,7 +82,7 @@ from carousel_theory.increment_sums import (
     flicker_normalisation,
     rising_factorial,
 )
-from carousel_theory.noise_model import NoiseModel, increment_autocovariance
+from carousel_theory.noise_model import NoiseModel, ar_increment_reach, increment_autocovariance
 
 __all__ = [
     "BLOCK_RATIO",
@@ -115,7 +124,7 @@ class LagModel:
     @classmethod
     def of(cls, model: NoiseModel) -> LagModel:
         terms = model.terms()
-        reach = max(3, _ar_lags(model)) if "ar" in terms else 3
+        reach = max(3, ar_increment_reach(tuple(model.ar_coefficients))) if "ar" in terms else 3
         gamma = np.zeros(reach + 1)
         for name in ("white", "rrw", "quantization", "ar"):
             if name in terms:
@@ -138,12 +147,6 @@ class LagModel:
         if self.flicker_variance:
             result += self.flicker_variance * flicker_fourth_sum_at_distance(distance, self.flicker_d)
         return result
-
-
-def _ar_lags(model: NoiseModel) -> int:
-    from carousel_theory.noise_model import _ar_lags as lags
-
-    return lags(tuple(model.ar_coefficients))
 
 
 def _cubic(lag_model: LagModel, x: np.ndarray) -> np.ndarray:
@@ -403,13 +406,35 @@ def _derivative_bounds(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, en
     return lag_model.flicker_variance * bound
 
 
+def _far(
+    pairs: _Pairs,
+    owner: np.ndarray,
+    lags: np.ndarray,
+    reach: int,
+    flicker: bool,
+    nearest: np.ndarray | None = None,
+) -> np.ndarray:
+    """Where c comes from the far-tail series: at least FAR support widths and the finite terms' reach
+    (+ 8) from the support, with 1/f in the model."""
+    if not flicker:
+        return np.zeros(len(lags), dtype=bool)
+    nearest = pairs.nearest(owner, lags) if nearest is None else nearest
+    return (nearest >= FAR * pairs.width()[owner]) & (nearest >= max(reach + 8, _NEWTON_TERMS + 4))
+
+
 def _partition(
     pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(x₀, far, direct, near): how c is taken at each lag (:func:`_batch_values`)."""
+    return _partition_for(pairs, owner, lags, lag_model.reach, bool(lag_model.flicker_variance))
+
+
+def _partition_for(
+    pairs: _Pairs, owner: np.ndarray, lags: np.ndarray, reach: int, flicker: bool
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_partition` for finite terms reaching ``reach`` lags, with 1/f or not."""
     nearest, width = pairs.nearest(owner, lags), pairs.width()[owner]
-    flicker = bool(lag_model.flicker_variance)
-    far = (nearest >= FAR * width) & (nearest >= max(lag_model.reach + 8, _NEWTON_TERMS + 4)) & flicker
+    far = _far(pairs, owner, lags, reach, flicker, nearest)
     # Narrow pairs at integer lags, or at any lag outside the support (where every δ + u keeps one sign
     # and γ_z is analytic).
     direct = ~far & (width <= _DIRECT_WIDTH) & ((lags == np.rint(lags)) | (nearest >= 1)) & flicker
@@ -422,12 +447,27 @@ def _nine_term_sum(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: 
     return np.einsum("ij,ij->i", values, pairs.weights[owner])
 
 
-def _tabulated_nine_term_sum(
-    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
-) -> np.ndarray:
-    """:func:`_nine_term_sum` at integer ``lags`` sorted within each pair: runs of consecutive lags give
-    runs of arguments q − δ, merged across pairs (octave pairs share most of them); H is evaluated once
-    on their union and gathered by index (element by element, so each value is the direct one)."""
+@dataclass(frozen=True)
+class _Gathered:
+    """c = Σ_q w_q H(q − δ) at many lags as H at distinct ``arguments`` and, per lag, the ``index`` of its
+    nine arguments among them with the ``weights`` w_q (a structure of the pairs alone, kept by
+    :class:`PairBatch`); :meth:`values` is element by element the direct nine-term sum."""
+
+    arguments: np.ndarray
+    index: np.ndarray
+    weights: np.ndarray
+
+    def values(self, lag_model: LagModel) -> np.ndarray:
+        if not len(self.index):
+            return np.zeros(0)
+        return np.einsum("ij,ij->i", lag_model.fourth_sum(self.arguments)[self.index], self.weights)
+
+
+def _tabulated_gather(pairs: _Pairs, owner: np.ndarray, lags: np.ndarray) -> _Gathered:
+    """:class:`_Gathered` at integer ``lags`` sorted within each pair: runs of consecutive lags give runs
+    of arguments q − δ, merged across pairs (octave pairs share most of them) into the distinct ones."""
+    if not len(lags):
+        return _Gathered(np.zeros(0), np.zeros((0, 9), dtype=np.int64), np.zeros((0, 9)))
     breaks = np.flatnonzero((np.diff(lags) != 1) | (np.diff(owner) != 0))
     starts, stops = np.concatenate(([0], breaks + 1)), np.concatenate((breaks, [len(lags) - 1]))
     positions = pairs.positions[owner[starts]]
@@ -436,11 +476,29 @@ def _tabulated_nine_term_sum(
     lengths = (last - first + 1).astype(np.int64)
     offsets = np.concatenate(([0], np.cumsum(lengths)[:-1]))
     keys = np.repeat(first - offsets, lengths) + np.arange(int(lengths.sum()))
-    values = lag_model.fourth_sum(keys.astype(np.float64))
     run = np.searchsorted(first, lowest, side="right") - 1  # the merged run holding each argument run
     base = (offsets[run] - first[run] + positions.ravel()).reshape(positions.shape)  # q − δ ↦ base − δ
     index = base[np.repeat(np.arange(len(starts)), stops - starts + 1)] - lags[:, None]
-    return np.einsum("ij,ij->i", values[index.astype(np.int64)], pairs.weights[owner])
+    return _Gathered(keys.astype(np.float64), index.astype(np.int32), pairs.weights[owner])
+
+
+def _tabulated_nine_term_sum(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> np.ndarray:
+    """:func:`_nine_term_sum` at integer ``lags`` sorted within each pair, H evaluated once on the union of
+    their arguments (:func:`_tabulated_gather`; element by element, so each value is the direct one)."""
+    return _tabulated_gather(pairs, owner, lags).values(lag_model)
+
+
+def _direct_values(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray) -> np.ndarray:
+    """c at lags of narrow pairs: the 1/f part by :func:`_direct_flicker`, the finite part by the nine-term
+    sum."""
+    finite = replace(lag_model, flicker_variance=0.0)
+    flicker = np.empty(len(lags))
+    for row in np.unique(owner).tolist():
+        mine = owner == row
+        flicker[mine] = _direct_flicker(int(pairs.m_i[row]), int(pairs.m_j[row]), lag_model, lags[mine])
+    return flicker + _nine_term_sum(pairs, finite, owner, lags)
 
 
 def _batch_values(
@@ -449,19 +507,32 @@ def _batch_values(
     """(c, bound on its error) at ``lags`` of the pairs ``owner``: the Newton series in the far tail;
     elsewhere the nine-term sum of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u). ``tabulated``:
     the lags are integers, sorted within each pair, and H is tabulated once for all of them."""
-    nearest, far, direct, near = _partition(pairs, lag_model, owner, lags)
+    parts = _partition(pairs, lag_model, owner, lags)
+    near = parts[3]
+    if not np.any(near):
+        return _parted_values(pairs, lag_model, owner, lags, parts, None)
+    nine_term_sum = _tabulated_nine_term_sum if tabulated else _nine_term_sum
+    return _parted_values(
+        pairs, lag_model, owner, lags, parts, nine_term_sum(pairs, lag_model, owner[near], lags[near])
+    )
+
+
+def _parted_values(
+    pairs: _Pairs,
+    lag_model: LagModel,
+    owner: np.ndarray,
+    lags: np.ndarray,
+    parts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    near_values: np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """(c, bound on its error) by the partition ``parts`` of :func:`_partition`, the nine-term sums at its
+    near lags given."""
+    nearest, far, direct, near = parts
     values, errors = np.empty(len(lags)), np.zeros(len(lags))
     if np.any(direct):
-        finite = replace(lag_model, flicker_variance=0.0)
-        chosen_owner, chosen = owner[direct], lags[direct]
-        flicker = np.empty(len(chosen))
-        for row in np.unique(chosen_owner).tolist():
-            mine = chosen_owner == row
-            flicker[mine] = _direct_flicker(int(pairs.m_i[row]), int(pairs.m_j[row]), lag_model, chosen[mine])
-        values[direct] = flicker + _nine_term_sum(pairs, finite, chosen_owner, chosen)
-    if np.any(near):
-        nine_term_sum = _tabulated_nine_term_sum if tabulated else _nine_term_sum
-        values[near] = nine_term_sum(pairs, lag_model, owner[near], lags[near])
+        values[direct] = _direct_values(pairs, lag_model, owner[direct], lags[direct])
+    if near_values is not None:
+        values[near] = near_values
     if np.any(far):
         values[far], errors[far] = _newton_series(pairs, lag_model, owner[far], nearest[far])
     return values, errors
@@ -554,25 +625,164 @@ def _chunked_values(
     return values, errors
 
 
-def _block_sums(
-    pairs: _Pairs, lag_model: LagModel, layout: tuple[np.ndarray, ...]
-) -> tuple[np.ndarray, np.ndarray]:
-    """(Σ over the Gauss blocks of N c², the blocks' error bound) of each pair (module text)."""
-    size = len(pairs.m_i)
-    if not layout:
-        return np.zeros(size), np.zeros(size)
-    nodes, weights, block, block_owner, ends, log_norms = layout
-    owner = block_owner[block]
-    values, errors = _chunked_values(pairs, lag_model, owner, nodes)
-    weighted = weights * pairs.count(owner, nodes)
-    total = np.bincount(owner, weighted * (values * values), minlength=size)
-    bound = np.bincount(owner, weighted * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
-    derivative = _derivative_bounds(pairs, lag_model, block_owner, ends)
-    square_sums = np.bincount(block, weights * values * values, minlength=len(block_owner))
-    largest = np.maximum(pairs.count(block_owner, ends[:, 0]), pairs.count(block_owner, ends[:, 1]))
-    norms = np.exp(log_norms)
-    quadrature = derivative * largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
-    return total, bound + np.bincount(block_owner, quadrature, minlength=size)
+@dataclass(frozen=True)
+class PairBatch:
+    """The pairs of one covariance with all that does not depend on the model's variances or its 1/f
+    order: the exact lags and the Gauss blocks of :func:`_plan` (for the finite terms' ``reach``), the
+    counts N there, and which of them the far-tail series takes (:func:`_partition`, where the finite
+    terms' c is exactly 0: every argument of their γ_z is beyond their reach)."""
+
+    pairs: _Pairs
+    reach: int
+    flicker: bool
+    lag_owner: np.ndarray
+    lags: np.ndarray
+    lag_counts: np.ndarray
+    far_lags: np.ndarray
+    nodes: np.ndarray
+    node_weights: np.ndarray
+    node_block: np.ndarray
+    node_owner: np.ndarray
+    node_counts: np.ndarray
+    far_nodes: np.ndarray
+    block_owner: np.ndarray
+    block_ends: np.ndarray
+    block_largest: np.ndarray
+    block_norms: np.ndarray
+
+    @functools.cached_property
+    def lag_parts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """:func:`_partition` of the exact lags."""
+        return _partition_for(self.pairs, self.lag_owner, self.lags, self.reach, self.flicker)
+
+    @functools.cached_property
+    def lag_gather(self) -> _Gathered:
+        """:func:`_tabulated_gather` at the exact lags taken by the nine-term sum."""
+        near = self.lag_parts[3]
+        return _tabulated_gather(self.pairs, self.lag_owner[near], self.lags[near])
+
+    @functools.cached_property
+    def node_parts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """:func:`_partition` of the Gauss nodes."""
+        return _partition_for(self.pairs, self.node_owner, self.nodes, self.reach, self.flicker)
+
+    @functools.cached_property
+    def node_gather(self) -> _Gathered:
+        """:func:`_gridded_gather` at the Gauss nodes taken by the nine-term sum."""
+        return _gridded_gather(self, self.node_parts[3])
+
+    @classmethod
+    def of(cls, pairs: Sequence[tuple[int, int, int, int]], reach: int, flicker: bool) -> PairBatch:
+        """The batch of (m_i, m_j, K_i, K_j) ``pairs`` for terms reaching ``reach`` lags, with 1/f or not."""
+        batch = _Pairs.of([_make_pair(*pair) for pair in pairs])
+        plans = [_plan(*pair, reach) for pair in pairs]
+        lags = np.concatenate([exact for exact, _ in plans]).astype(np.float64)
+        owner = np.repeat(np.arange(len(pairs)), [len(exact) for exact, _ in plans])
+        layout = _block_layout(plans)
+        if not layout:
+            empty, none = np.zeros(0), np.zeros(0, dtype=np.int64)
+            layout = (empty, empty, none, none, np.zeros((0, 2)), empty)
+        nodes, weights, block, block_owner, ends, log_norms = layout
+        node_owner = block_owner[block]
+        largest = np.maximum(batch.count(block_owner, ends[:, 0]), batch.count(block_owner, ends[:, 1]))
+        return cls(
+            batch, reach, flicker, owner, lags, batch.count(owner, lags),
+            _far(batch, owner, lags, reach, flicker), nodes, weights, block, node_owner,
+            weights * batch.count(node_owner, nodes), _far(batch, node_owner, nodes, reach, flicker),
+            block_owner, ends, largest, np.exp(log_norms),
+        )  # fmt: skip
+
+
+@dataclass(frozen=True)
+class TermValues:
+    """c of one term at a batch's exact lags and Gauss nodes, the bounds on the far-tail series' error
+    there, and the bound B on each block's derivative (both zero for a finite term)."""
+
+    lags: np.ndarray
+    lag_errors: np.ndarray
+    nodes: np.ndarray
+    node_errors: np.ndarray
+    derivative: np.ndarray
+
+
+def term_values(batch: PairBatch, lag_model: LagModel) -> TermValues:
+    """:class:`TermValues` of ``lag_model`` (one term, or the whole model) on ``batch``: the values
+    :func:`counted_square_sums` sums, element by element."""
+    pairs = batch.pairs
+    if lag_model.reach != batch.reach or bool(lag_model.flicker_variance) != batch.flicker:
+        raise ValueError(
+            f"lag_model.reach={lag_model.reach!r}: must be the batch's reach {batch.reach}, with 1/f"
+        )
+    values, errors = _parted_values(
+        pairs, lag_model, batch.lag_owner, batch.lags, batch.lag_parts, batch.lag_gather.values(lag_model)
+    )
+    node_values, node_errors = _parted_values(
+        pairs, lag_model, batch.node_owner, batch.nodes, batch.node_parts, batch.node_gather.values(lag_model)
+    )
+    derivative = _derivative_bounds(pairs, lag_model, batch.block_owner, batch.block_ends)
+    return TermValues(values, errors, node_values, node_errors, derivative)
+
+
+def _gridded_gather(batch: PairBatch, chosen: np.ndarray) -> _Gathered:
+    """:class:`_Gathered` at the ``chosen`` Gauss nodes. A node δ = f + o (f the block's first lag, o the
+    rule's offset) has the arguments q − δ = (q − f) − o; blocks of the same length share their offsets
+    and, grown from breakpoints at the same distances, most of their q − f (octave pairs: about one
+    (block, q) in nine is new), so H is needed only on the distinct (q − f, length) at the p offsets."""
+    pairs, points = batch.pairs, GAUSS_POINTS
+    if not np.any(chosen):
+        return _Gathered(np.zeros(0), np.zeros((0, 9), dtype=np.int64), np.zeros((0, 9)))
+    blocks = np.flatnonzero(np.bincount(batch.node_block[chosen], minlength=len(batch.block_owner)))
+    first = batch.block_ends[blocks, 0]
+    length = (batch.block_ends[blocks, 1] - first + 1).astype(np.int64)
+    shift = (pairs.positions[batch.block_owner[blocks]] - first[:, None]).astype(np.int64)
+    keys = ((shift + (1 << 40)) << 22) | length[:, None]  # (q − f, length) as one integer
+    distinct, inverse = np.unique(keys.ravel(), return_inverse=True)
+    lengths, which = np.unique(distinct & ((1 << 22) - 1), return_inverse=True)
+    offsets = np.stack([_gauss_rule(int(size), points)[0] for size in lengths.tolist()])[which]
+    arguments = ((distinct >> 22) - (1 << 40)).astype(np.float64)[:, None] - offsets
+    where = np.searchsorted(blocks, batch.node_block[chosen])
+    index = inverse.reshape(keys.shape)[where] * points + (np.flatnonzero(chosen) % points)[:, None]
+    return _Gathered(arguments.ravel(), index.astype(np.int32), pairs.weights[batch.node_owner[chosen]])
+
+
+def _combined(arrays: Sequence[np.ndarray], variances: Sequence[float]) -> np.ndarray:
+    """Σ_a θ_a x_a over the terms whose arrays are not empty."""
+    total = np.zeros(0)
+    for array, variance in zip(arrays, variances, strict=True):
+        if len(array):
+            total = variance * array if not len(total) else total + variance * array
+    return total
+
+
+def combined_sums(
+    batch: PairBatch, terms: Sequence[TermValues], variances: Sequence[float]
+) -> list[tuple[float, float]]:
+    """(Σ_δ N c², proved bound on its error) of each pair for c = Σ_a θ_a c_a, θ = ``variances`` of the
+    ``terms`` (module text): the exact lags and the Gauss blocks of the combined values."""
+    size = len(batch.pairs.m_i)
+    values = _combined([t.lags for t in terms], variances)
+    errors = _combined([t.lag_errors for t in terms], variances)
+    counts = batch.lag_counts
+    total = np.bincount(batch.lag_owner, counts * (values * values), minlength=size)
+    bound = np.bincount(batch.lag_owner, counts * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
+    block_total: np.ndarray = np.zeros(size)
+    block_bound: np.ndarray = np.zeros(size)
+    if len(batch.nodes):
+        values = _combined([t.nodes for t in terms], variances)
+        errors = _combined([t.node_errors for t in terms], variances)
+        weighted, owner = batch.node_counts, batch.node_owner
+        block_total = np.bincount(owner, weighted * (values * values), minlength=size)
+        error_terms = weighted * (errors * (2.0 * np.abs(values) + errors))
+        block_bound = np.bincount(owner, error_terms, minlength=size)
+        derivative = _combined([t.derivative for t in terms], variances)
+        if len(derivative):
+            square_sums = np.bincount(
+                batch.node_block, batch.node_weights * values * values, minlength=len(batch.block_owner)
+            )
+            norms, largest = batch.block_norms, batch.block_largest
+            quadrature = derivative * largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
+            block_bound = block_bound + np.bincount(batch.block_owner, quadrature, minlength=size)
+    return list(zip((total + block_total).tolist(), (bound + block_bound).tolist(), strict=True))
 
 
 def counted_square_sums(
@@ -584,13 +794,16 @@ def counted_square_sums(
     value is, bit for bit, the one the pair alone gives."""
     if not pairs:
         return []
-    batch = _Pairs.of([_make_pair(*pair) for pair in pairs])
-    plans = [_plan(*pair, lag_model.reach) for pair in pairs]
-    lags = np.concatenate([exact for exact, _ in plans]).astype(np.float64)
-    owner = np.repeat(np.arange(len(pairs)), [len(exact) for exact, _ in plans])
-    values, errors = _batch_values(batch, lag_model, owner, lags, tabulated=True)
-    counts = batch.count(owner, lags)
-    total = np.bincount(owner, counts * (values * values), minlength=len(pairs))
-    bound = np.bincount(owner, counts * (errors * (2.0 * np.abs(values) + errors)), minlength=len(pairs))
-    block_total, block_bound = _block_sums(batch, lag_model, _block_layout(plans))
-    return list(zip((total + block_total).tolist(), (bound + block_bound).tolist(), strict=True))
+    batch = pair_batch(
+        tuple(tuple(pair) for pair in pairs), lag_model.reach, bool(lag_model.flicker_variance)
+    )
+    return combined_sums(batch, [term_values(batch, lag_model)], [1.0])
+
+
+@functools.lru_cache(maxsize=2)
+def pair_batch(pairs: tuple[tuple[int, int, int, int], ...], reach: int, flicker: bool) -> PairBatch:
+    """:meth:`PairBatch.of` with its gathers built, kept for the next covariance of the same pairs (a fit's
+    iterations)."""
+    batch = PairBatch.of(pairs, reach, flicker)
+    _ = (batch.lag_gather, batch.node_gather)
+    return batch

@@ -61,6 +61,7 @@ __all__ = [
     "WHITE_ALLAN_VARIANCE",
     "NoiseModel",
     "ar_autocovariance",
+    "ar_increment_reach",
     "increment_autocovariance",
     "spectral_density",
     "term_allan_variance",
@@ -304,11 +305,13 @@ def ar_autocovariance(coefficients: tuple[float, ...], lags: int) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=64)
-def _ar_lags(coefficients: tuple[float, ...]) -> int:
-    """Lags of γ_z that carry the AR term: up to where its envelope is below ``AR_TRUNCATION``, plus 2."""
+def ar_increment_reach(coefficients: tuple[float, ...]) -> int:
+    """The last lag at which γ_z of the AR term can be non-zero: :func:`ar_autocovariance` keeps γ(k) for
+    k ≤ p + 1 + ⌊log AR_TRUNCATION / log ρ⌋ (zero beyond), and γ_z(k) = 2γ(k) − γ(k − 1) − γ(k + 1)
+    reaches one lag further."""
     rho = _slowest_root(tuple(float(c) for c in coefficients))
-    reach = 0 if rho == 0 else int(math.log(AR_TRUNCATION) / math.log(rho)) + 1
-    return len(coefficients) + reach + 3
+    kept = len(coefficients) + 1 + (0 if rho == 0 else int(math.log(AR_TRUNCATION) / math.log(rho)))
+    return kept + 1
 
 
 def _frozen(array: np.ndarray) -> np.ndarray:
@@ -441,7 +444,8 @@ def term_allan_variance(
     if term == "flicker":  # O(1) per τ: the telescoped fourth sum of the Gamma ratio
         return np.array(flicker_allan_variance_closed(float(flicker_d), tuple(m.tolist())))
     if term == "ar":  # O(T) per τ, T the AR reach: the fourth sum of the finite γ_z
-        gamma = increment_autocovariance(term, _ar_lags(tuple(ar_coefficients)), flicker_d, ar_coefficients)
+        lags = ar_increment_reach(tuple(ar_coefficients)) + 1
+        gamma = increment_autocovariance(term, lags, flicker_d, ar_coefficients)
         # Σ_k γ_z(k) = 0 exactly for the increments of a stationary process
         return allan_variance_from_fourth_sum(lambda x: finite_fourth_sum(gamma, x, total=0.0), m)
     raise ValueError(f"term={term!r}: must be one of {TERMS}")

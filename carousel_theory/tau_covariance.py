@@ -63,7 +63,11 @@ import sympy as sp
 from carousel_theory import symbols
 from carousel_theory.increment_sums import flicker_increment_difference
 from carousel_theory.lag_quadrature import LagModel, counted_square_sum, counted_square_sums, ramp_positions
-from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel, unit_flicker_increment_autocovariance
+from carousel_theory.noise_model import (
+    NoiseModel,
+    ar_increment_reach,
+    unit_flicker_increment_autocovariance,
+)
 
 __all__ = [
     "FLICKER_REACH",
@@ -213,15 +217,8 @@ def _lag_window(model: NoiseModel, m_i: int, m_j: int) -> int:
     if "flicker" in terms:
         reach = FLICKER_REACH * (m_i + m_j) + 64
     if "ar" in terms:
-        reach = max(reach, _ar_reach(tuple(model.ar_coefficients)))
+        reach = max(reach, ar_increment_reach(tuple(model.ar_coefficients)))
     return reach
-
-
-@functools.lru_cache(maxsize=64)
-def _ar_reach(coefficients: tuple[float, ...]) -> int:
-    """Lags beyond which the AR envelope ρ^k is below AR_TRUNCATION (ρ the largest root modulus)."""
-    rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -np.asarray(coefficients)))))))
-    return int(math.log(AR_TRUNCATION) / math.log(rho)) + len(coefficients) + 2 if rho > 0 else 0
 
 
 def _flicker_tail_bound(memory: _LongMemory, m_i: int, m_j: int, inner: int, count: int) -> float:
@@ -279,7 +276,7 @@ class _LongMemory:
             extent = max(extent, 2 * m_i - 2 - first + 1, last + 2 * m_j - 2 + 1)
         terms = model.terms()
         # The other terms' γ_z vanish beyond the AR envelope's reach (values below do not depend on lags).
-        finite = 4 + (_ar_reach(tuple(model.ar_coefficients)) if "ar" in terms else 0)
+        finite = 4 + (ar_increment_reach(tuple(model.ar_coefficients)) if "ar" in terms else 0)
         self.scale: float | None = None
         if "flicker" not in terms:
             self.gamma = model.increment_autocovariance(min(extent, finite))
@@ -421,21 +418,30 @@ def _pair_sums(
     return [_pair_sum(model, engine, *pair, estimator) for pair in arguments]
 
 
+def _upper_pairs(count: int) -> list[tuple[int, int]]:
+    return [(i, j) for j in range(count) for i in range(j + 1)]
+
+
+def _assembled(
+    sizes: np.ndarray, terms: np.ndarray, sums: Sequence[tuple[float, float]]
+) -> tuple[np.ndarray, np.ndarray]:
+    """(Σ N c² / scale, error bound / scale) as matrices from the sums of :func:`_upper_pairs`."""
+    count = len(sizes)
+    covariance, bound = np.empty((count, count)), np.zeros((count, count))
+    for (i, j), (total, tail) in zip(_upper_pairs(count), sums, strict=True):
+        scale = 2.0 * float(sizes[i]) ** 2 * float(sizes[j]) ** 2 * int(terms[i]) * int(terms[j])
+        covariance[i, j] = covariance[j, i] = total / scale
+        bound[i, j] = bound[j, i] = tail / scale
+    return covariance, bound
+
+
 def _covariance_matrix(
     model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
 ) -> tuple[np.ndarray, np.ndarray]:
     """(Σ N c² / scale, error bound / scale) for every pair of non-decreasing ``sizes``."""
     terms = _terms_count(sizes, length, estimator)
-    count = len(sizes)
-    pairs = [(i, j) for j in range(count) for i in range(j + 1)]
-    covariance, bound = np.empty((count, count)), np.zeros((count, count))
-    for (i, j), (total, tail) in zip(
-        pairs, _pair_sums(model, sizes, terms, length, estimator, pairs), strict=True
-    ):
-        scale = 2.0 * float(sizes[i]) ** 2 * float(sizes[j]) ** 2 * int(terms[i]) * int(terms[j])
-        covariance[i, j] = covariance[j, i] = total / scale
-        bound[i, j] = bound[j, i] = tail / scale
-    return covariance, bound
+    pairs = _upper_pairs(len(sizes))
+    return _assembled(sizes, terms, _pair_sums(model, sizes, terms, length, estimator, pairs))
 
 
 def allan_estimate_covariance(
@@ -459,8 +465,19 @@ def allan_estimate_covariance(
             "larger ones (use octave τ)"
         )
     order = np.argsort(sizes, kind="stable")  # summed in increasing τ (the window of A_j covers m_i ≤ m_j)
-    ascending, inverse = sizes[order], np.argsort(order)
-    covariance, bound = _covariance_matrix(model, ascending, int(length), estimator)
+    covariance, bound = _covariance_matrix(model, sizes[order], int(length), estimator)
+    return _in_given_order(model, sizes, covariance, bound, np.argsort(order), estimator)
+
+
+def _in_given_order(
+    model: NoiseModel,
+    sizes: np.ndarray,
+    covariance: np.ndarray,
+    bound: np.ndarray,
+    inverse: np.ndarray,
+    estimator: str,
+) -> TauCovariance:
+    """The :class:`TauCovariance` of matrices in ascending τ, put back in the order of ``sizes``."""
     covariance, bound = covariance[np.ix_(inverse, inverse)], bound[np.ix_(inverse, inverse)]
     allan = model.allan_variance(sizes)
     edf = 2.0 * allan**2 / np.diag(covariance)

@@ -8,11 +8,15 @@
   and |F^{(p)}(j)| ≤ |Δ^p F(j − p)| (mpmath derivatives at 30 digits);
 - the discrete Gauss rule integrates polynomials of degree ≤ 2p − 1 over the block's integers exactly;
 - the batched sum over many pairs (H tabulated once on the union of their integer arguments) returns,
-  value for value and bound for bound, what each pair gives alone.
+  value for value and bound for bound, what each pair gives alone;
+- c at the Gauss nodes from H on the distinct (q − f, block length) arguments equals the nine-term sum at
+  each node to the rounding of the sum (64 ulps of Σ|w_q H|), and a pair batch reused for a second model
+  gives what a fresh one gives.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
 from fractions import Fraction
 
 import mpmath
@@ -25,15 +29,19 @@ from carousel_theory.lag_quadrature import (
     BLOCK_RATIO,
     GAUSS_POINTS,
     LagModel,
+    PairBatch,
     _batch_values,
     _gauss_rule,
     _make_pair,
+    _nine_term_sum,
     _Pairs,
     _plan,
     _values,
+    combined_sums,
     counted_square_sum,
     counted_square_sums,
     ramp_positions,
+    term_values,
 )
 from carousel_theory.noise_model import NoiseModel
 
@@ -47,15 +55,9 @@ def _every_lag(model: NoiseModel, m_i: int, m_j: int, length: int) -> float:
     return float(np.dot(pair.count(lags), values * values))
 
 
-@given(
-    d=st.floats(min_value=0.02, max_value=0.98),
-    m_i=st.sampled_from([1, 2, 3, 8, 50, 256]),
-    ratio=st.sampled_from([1, 2, 4, 16]),
-    length=st.integers(min_value=5_000, max_value=60_000),
-    with_ar=st.booleans(),
-)
-def test_gauss_blocks_equal_every_lag_summed_within_the_bound(d, m_i, ratio, length, with_ar):
-    model = NoiseModel(
+def _flicker_model(d: float, with_ar: bool) -> NoiseModel:
+    """White + RRW + 1/f of order d, with AR(1) short noise or not."""
+    return NoiseModel(
         sample_rate=1.0,
         white_variance=0.5,
         rrw_variance=1e-6,
@@ -64,6 +66,17 @@ def test_gauss_blocks_equal_every_lag_summed_within_the_bound(d, m_i, ratio, len
         ar_variance=0.3 if with_ar else 0.0,
         ar_coefficients=(0.7,) if with_ar else (),
     )
+
+
+@given(
+    d=st.floats(min_value=0.02, max_value=0.98),
+    m_i=st.sampled_from([1, 2, 3, 8, 50, 256]),
+    ratio=st.sampled_from([1, 2, 4, 16]),
+    length=st.integers(min_value=5_000, max_value=60_000),
+    with_ar=st.booleans(),
+)
+def test_gauss_blocks_equal_every_lag_summed_within_the_bound(d, m_i, ratio, length, with_ar):
+    model = _flicker_model(d, with_ar)
     m_j = m_i * ratio
     assume(3 * m_j <= length)  # at least three clusters, as the fit requires
     K_i, K_j = length - 2 * m_i + 1, length - 2 * m_j + 1
@@ -214,3 +227,34 @@ def test_fourth_sum_table_is_direct_evaluation(with_ar):
     direct = _batch_values(batch, lag_model, owner, lags, tabulated=False)
     np.testing.assert_array_equal(tabulated[0], direct[0])
     np.testing.assert_array_equal(tabulated[1], direct[1])
+
+
+@given(
+    d=st.floats(min_value=0.02, max_value=0.98),
+    length=st.integers(min_value=40_000, max_value=400_000),
+    with_ar=st.booleans(),
+)
+def test_gridded_node_values_equal_the_nine_term_sum(d, length, with_ar):
+    model = _flicker_model(d, with_ar)
+    sizes = [2**k for k in range(14) if 3 * 2**k <= length]
+    terms = [length - 2 * m + 1 for m in sizes]
+    pairs = [(sizes[i], sizes[j], terms[i], terms[j]) for j in range(len(sizes)) for i in range(j + 1)]
+    lag_model = LagModel.of(model)
+    batch = PairBatch.of(pairs, lag_model.reach, True)
+    near = batch.node_parts[3]
+    assert np.any(near)
+    owner, nodes = batch.node_owner[near], batch.nodes[near]
+    got = batch.node_gather.values(lag_model)
+    direct = _nine_term_sum(batch.pairs, lag_model, owner, nodes)
+    arguments = batch.pairs.positions[owner] - nodes[:, None]
+    magnitude = np.einsum(
+        "ij,ij->i",
+        np.abs(lag_model.fourth_sum(arguments.ravel()).reshape(arguments.shape)),
+        np.abs(batch.pairs.weights[owner]),
+    )
+    assert np.all(np.abs(got - direct) <= 64 * np.finfo(float).eps * magnitude)
+    # The batch holds only the pairs' structure: reused for another model it gives a fresh batch's sums.
+    other = LagModel.of(replace(model, flicker_d=1.0 - d, white_variance=2.0))
+    reused = combined_sums(batch, [term_values(batch, other)], [1.0])
+    fresh_batch = PairBatch.of(pairs, other.reach, True)
+    assert reused == combined_sums(fresh_batch, [term_values(fresh_batch, other)], [1.0])
