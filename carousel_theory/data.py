@@ -157,7 +157,10 @@ def _check_column(name: str, values: Any, source: str, expected_length: int | No
 def _grid_deviation(time: np.ndarray) -> float:
     """Largest distance, in s, of a timestamp from the uniform grid through the first and the last."""
     step = float(time[-1] - time[0]) / (len(time) - 1)
-    return float(np.max(np.abs(time - np.arange(len(time)) * step)))
+    distance = np.arange(len(time), dtype=np.float64)  # |t_k − k·step|, in one record-length array
+    distance *= step
+    np.subtract(time, distance, out=distance)
+    return float(np.max(np.abs(distance, out=distance)))
 
 
 def _timing_note(time: np.ndarray, resolution: float) -> tuple[str | None, float]:
@@ -176,7 +179,10 @@ def _timing_note(time: np.ndarray, resolution: float) -> tuple[str | None, float
             f"gap: {gaps.size} steps longer than {GAP_FACTOR} x the median step {nominal:.6g} s; the first "
             f"is between t[{i}]={time[i]:.6g} s and t[{i + 1}]={time[i + 1]:.6g} s"
         ), 0.0
-    uneven = np.flatnonzero(np.abs(steps - nominal) > tolerance)
+    distance = np.subtract(steps, nominal)  # |step − median step|, in one record-length array
+    np.abs(distance, out=distance)
+    uneven = np.flatnonzero(distance > tolerance)
+    del distance
     if uneven.size == 0:
         return None, 0.0
     jitter = _grid_deviation(time)
@@ -223,6 +229,7 @@ def _check_timing(
             f"t[{i + 1}]={float(time[i + 1])!r} s after the first ({bad.size} such steps)"
             + ("; --resample HZ averages repeated timestamps" if steps[i] == 0 else "")
         )
+    del steps  # a record-length array: _timing_note makes its own
     note, jitter = _timing_note(time, resolution)
     if note is not None and irregular == "refuse":
         raise ValueError(f"{source}: {note} ({_resample_advice(time)})")

@@ -39,3 +39,13 @@ def test_nothing_held_once_dropped():
     reference = weakref.ref(residuals["wy"])
     gc.collect()
     assert reference() is None
+
+
+def test_fresh_is_a_writable_array_of_its_own():
+    residuals, cleaned = _residuals()
+    held = residuals["wx"]
+    fresh = residuals.fresh("wx")
+    np.testing.assert_array_equal(fresh, held)
+    assert fresh.flags.writeable and not np.shares_memory(fresh, held)
+    fresh[0] += 1.0
+    np.testing.assert_array_equal(residuals["wx"], cleaned["wx"] - 0.25)  # the shared one is unchanged

@@ -269,3 +269,14 @@ def test_bursty_mpu6050_resampled_as_the_loop_reported_it(shared_data):
     assert recording.notes[-1].endswith("uniform 12.41 Hz grid, 15 of 8134 bins empty and interpolated")
     with pytest.raises(ValueError, match=r"no sample between t=649\.779 s and t=650\.276 s"):
         load_recording(path, resample=25.0)
+
+
+def test_grid_deviation_is_the_plain_expression_bit_for_bit():
+    # Formed in one array in place; the same numbers as the expression it replaces.
+    from carousel_theory.data import _grid_deviation
+
+    rng = np.random.default_rng(21)
+    time = np.arange(100_001) / 100.0 + rng.uniform(-2e-6, 2e-6, 100_001)
+    time -= time[0]
+    step = float(time[-1] - time[0]) / (len(time) - 1)
+    assert _grid_deviation(time) == float(np.max(np.abs(time - np.arange(len(time)) * step)))

@@ -9,10 +9,10 @@ import json
 import numpy as np
 import pytest
 from conftest import Z_MONTE_CARLO
-from scipy import stats
+from scipy import ndimage, stats
 
 from carousel_theory.closed_loop.detectors import DETECTORS, REMEDIES, TESTED_EFFECTS
-from carousel_theory.closed_loop.signal_detectors import hann_periodogram, robust_z
+from carousel_theory.closed_loop.signal_detectors import hann_periodogram, residual_periodogram, robust_z
 from carousel_theory.closed_loop.view import ModelSpec, build_view
 from carousel_theory.effects import CATALOGUE, check_effect_parameters, detect_quantization
 from carousel_theory.simulate import simulate_recording
@@ -74,6 +74,49 @@ def test_hann_periodogram_equals_its_definition_bit_for_bit(length):
     frequencies, power = hann_periodogram(values, 50.0)
     np.testing.assert_array_equal(power, expected)
     np.testing.assert_array_equal(frequencies, np.fft.rfftfreq(length, d=1.0 / 50.0))
+
+
+def test_residual_periodogram_is_the_periodogram_of_the_residual_bit_for_bit():
+    view = _view(("sinusoid:amplitude=5e-4,frequency=3.3",), samples=4_097)
+    for axis in view.axes:
+        expected = hann_periodogram(view.residuals[axis], view.sample_rate)
+        got = residual_periodogram(view, axis)
+        np.testing.assert_array_equal(got[0], expected[0])
+        np.testing.assert_array_equal(got[1], expected[1])
+        assert not view.residuals[axis].flags.writeable  # the view's residual is left as it was
+
+
+def _robust_z_as_written(x, window=15):
+    """The statistic of robust_z as plain expressions (no array reused), the reference for its
+    in-place arithmetic."""
+    half = window // 2
+    centred = ndimage.median_filter(x, size=half, mode="nearest")
+    shift = half // 2 + 1
+    padded = np.pad(centred, shift, mode="edge")
+    deviation = x - 0.5 * (padded[: len(x)] + padded[2 * shift :])
+    low, high = np.quantile(deviation, (0.005, 0.995))
+    central = deviation[(deviation >= low) & (deviation <= high)]
+    cut = float(stats.norm.isf(0.005))
+    trimmed_factor = 1.0 - 2.0 * cut * float(stats.norm.pdf(cut)) / 0.99
+    scale = np.sqrt(float(np.var(central)) / trimmed_factor) if len(central) > 1 else 0.0
+    if scale > 0:
+        scale = float(np.std(deviation[np.abs(deviation - np.median(deviation)) < 4.5 * scale]))
+    return deviation / (scale or float(np.std(deviation)) or 1.0)
+
+
+@pytest.mark.parametrize(
+    "values",
+    [
+        np.random.default_rng(8).standard_normal(100_003),
+        np.round(np.random.default_rng(9).standard_normal(5_000) * 3.0) / 3.0,  # a coarse lattice
+        np.zeros(50),  # no scale at all
+        np.r_[np.zeros(40), 1.0, np.zeros(40)],  # one spike on a constant
+    ],
+    ids=["gaussian", "lattice", "constant", "lone-spike"],
+)
+def test_robust_z_equals_its_plain_expressions_bit_for_bit(values):
+    values.setflags(write=False)
+    np.testing.assert_array_equal(robust_z(values), _robust_z_as_written(values))
 
 
 def test_spike_statistic_is_gaussian_in_the_tail():

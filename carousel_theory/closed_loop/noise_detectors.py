@@ -24,7 +24,7 @@ from carousel_theory.closed_loop.residual_model import (
     nested_statistic,
     spectral_density,
 )
-from carousel_theory.closed_loop.signal_detectors import hann_periodogram
+from carousel_theory.closed_loop.signal_detectors import residual_periodogram
 from carousel_theory.closed_loop.view import FittedEffect, ResidualView
 from carousel_theory.noise_model import term_allan_variance
 
@@ -54,7 +54,7 @@ class ColoredNoiseDetector:
 
     def _statistic(self, view: ResidualView, axis: str) -> tuple[float, int, int]:
         """(log ratio of the two medians, ordinates in the low band, in the high band)."""
-        frequencies, power = hann_periodogram(view.residuals[axis], view.sample_rate)
+        frequencies, power = residual_periodogram(view, axis)
         model = np.maximum(spectral_density(view.fits[axis].noise, frequencies), 1e-300)
         stride = slice(None, None, ORDINATE_STRIDE)
         relative, whitened = (frequencies / view.sample_rate)[stride], (power / model)[stride]

@@ -13,7 +13,7 @@ from carousel_theory.closed_loop.null_distributions import exponential_over_medi
 from carousel_theory.closed_loop.residual_model import spectral_density
 from carousel_theory.closed_loop.view import FittedEffect, ResidualView
 
-__all__ = ["SinusoidDetector", "SpikesDetector", "hann_periodogram", "robust_z"]
+__all__ = ["SinusoidDetector", "SpikesDetector", "hann_periodogram", "residual_periodogram", "robust_z"]
 
 
 def hann_periodogram(values: np.ndarray, sample_rate: float) -> tuple[np.ndarray, np.ndarray]:
@@ -23,20 +23,33 @@ def hann_periodogram(values: np.ndarray, sample_rate: float) -> tuple[np.ndarray
     white noise) each ordinate has mean ≈ S and, away from 0 and f_s/2, is ≈ S × Exp(1) for Gaussian
     data. The window keeps the leakage of a rate random walk's 1/f² spectrum local.
     """
-    # In place where the values allow, each record-length array freed once used: a long record holds
-    # at most four at a time (the window's own temporaries) beside ``values``.
-    window = np.hanning(len(values))
+    return _periodogram_in_place(np.subtract(values, values.mean()), sample_rate)
+
+
+def residual_periodogram(view: ResidualView, axis: str) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`hann_periodogram` of ``view.residuals[axis]``, bit for bit, formed in an array of its own
+    (:meth:`~carousel_theory.closed_loop.view.Residuals.fresh`): a long record holds no second copy of
+    the residual beside the FFT's."""
+    residual = view.residuals.fresh(axis)
+    residual -= residual.mean()
+    return _periodogram_in_place(residual, view.sample_rate)
+
+
+def _periodogram_in_place(x: np.ndarray, sample_rate: float) -> tuple[np.ndarray, np.ndarray]:
+    """The periodogram of the centred values ``x``, which it overwrites: each record-length array is
+    freed once used, so that beside ``x`` at most the window, or the FFT's output and scratch, are held."""
+    window = np.hanning(len(x))
     norm = float(np.dot(window, window))
-    x = values - values.mean()
     x *= window
     del window
     spectrum = np.fft.rfft(x)
+    length = len(x)
     del x
     power = spectrum.real**2
     power += spectrum.imag**2
     del spectrum
     power /= norm
-    frequencies = np.fft.rfftfreq(len(values), d=1.0 / sample_rate)
+    frequencies = np.fft.rfftfreq(length, d=1.0 / sample_rate)
     return frequencies, power
 
 
@@ -64,19 +77,34 @@ def robust_z(x: np.ndarray, window: int = 15) -> np.ndarray:
     the way it biases a median absolute deviation), then the standard deviation of everything within 4.5
     of those scales (the trimmed estimate alone is a few per cent low, which matters at the 5σ of a
     Bonferroni threshold)."""
+    # Record-length temporaries are formed in place and freed once used: beside ``x`` a long record
+    # holds at most three at a time (the same arithmetic, in the same order, as the plain expressions).
     half = window // 2
-    centred = ndimage.median_filter(x, size=half, mode="nearest")
     shift = half // 2 + 1
-    padded = np.pad(centred, shift, mode="edge")
-    deviation = x - 0.5 * (padded[: len(x)] + padded[2 * shift :])
-    low, high = np.quantile(deviation, (0.005, 0.995))
-    central = deviation[(deviation >= low) & (deviation <= high)]
+    padded = np.pad(ndimage.median_filter(x, size=half, mode="nearest"), shift, mode="edge")
+    deviation = np.add(padded[: len(x)], padded[2 * shift :], dtype=np.float64)
+    del padded
+    deviation *= 0.5
+    np.subtract(x, deviation, out=deviation)  # x − (left + right)/2
     cut = float(stats.norm.isf(0.005))
     trimmed_factor = 1.0 - 2.0 * cut * float(stats.norm.pdf(cut)) / 0.99
-    scale = math.sqrt(float(np.var(central)) / trimmed_factor) if len(central) > 1 else 0.0
+    central_variance = _central_variance(deviation)
+    scale = 0.0 if central_variance is None else math.sqrt(central_variance / trimmed_factor)
     if scale > 0:
-        scale = float(np.std(deviation[np.abs(deviation - np.median(deviation)) < 4.5 * scale]))
-    return deviation / (scale or float(np.std(deviation)) or 1.0)
+        distance = np.subtract(deviation, np.median(deviation))
+        np.abs(distance, out=distance)
+        inside = distance < 4.5 * scale
+        del distance
+        scale = float(np.std(deviation[inside]))
+    deviation /= scale or float(np.std(deviation)) or 1.0
+    return deviation
+
+
+def _central_variance(deviation: np.ndarray) -> float | None:
+    """The variance of the central 99 % of ``deviation`` (None when fewer than two values are central)."""
+    low, high = np.quantile(deviation, (0.005, 0.995))
+    central = deviation[(deviation >= low) & (deviation <= high)]
+    return float(np.var(central)) if len(central) > 1 else None
 
 
 class SpikesDetector:
@@ -90,7 +118,8 @@ class SpikesDetector:
         threshold = threshold_two_sided(alpha, tests)
         best, best_axis, best_count, axes = 0.0, "", 0, []
         for axis in view.axes:
-            z = np.abs(robust_z(view.residuals[axis]))
+            z = robust_z(view.residuals[axis])
+            np.abs(z, out=z)
             peak = float(np.max(z))
             if peak > threshold:
                 axes.append(axis)
@@ -113,7 +142,9 @@ class SpikesDetector:
         threshold = threshold_two_sided(alpha, len(view.time) * len(view.axes))
         replaced, fitted = {}, {}
         for axis in view.axes:
-            flagged = np.abs(robust_z(view.residuals[axis])) > threshold
+            z = robust_z(view.residuals[axis])
+            flagged = np.abs(z, out=z) > threshold
+            del z
             flagged = flagged | np.roll(flagged, 1) | np.roll(flagged, -1)
             replaced[axis] = flagged
             fitted[axis] = {"samples_replaced": int(flagged.sum())}
@@ -139,11 +170,20 @@ class SinusoidDetector:
     level_block = 512
 
     def _ratios(self, view: ResidualView, axis: str) -> tuple[np.ndarray, np.ndarray]:
-        frequencies, power = hann_periodogram(view.residuals[axis], view.sample_rate)
+        frequencies, power = residual_periodogram(view, axis)
         frequencies, power = frequencies[self.lowest_bin : -1], power[self.lowest_bin : -1]
         whitened = power / spectral_density(view.fits[axis].noise, frequencies)
         level = _block_median(whitened, self.level_block) / math.log(2.0)
         return frequencies, whitened / level
+
+    def _peak(self, view: ResidualView, axis: str) -> tuple[float, float, int] | None:
+        """(largest ratio, its frequency, ordinates) of one axis, None when there are no ordinates; the
+        record-length arrays are freed before the next axis is analysed."""
+        frequencies, ratio = self._ratios(view, axis)
+        if not len(ratio):
+            return None
+        index = int(np.argmax(ratio))
+        return float(ratio[index]), float(frequencies[index]), len(ratio)
 
     def _log_sf(self, ratio: float, length: int) -> float:
         """log P(one ordinate's ratio > ``ratio``) under the model (class docstring), at the smallest median
@@ -159,10 +199,10 @@ class SinusoidDetector:
     def detect(self, view: ResidualView, alpha: float) -> Detection:
         peaks, length = {}, 0
         for axis in view.axes:
-            frequencies, ratio = self._ratios(view, axis)
-            if len(ratio):
-                index = int(np.argmax(ratio))
-                peaks[axis], length = (float(ratio[index]), float(frequencies[index])), len(ratio)
+            peak = self._peak(view, axis)
+            if peak is not None:
+                ratio, frequency, length = peak
+                peaks[axis] = (ratio, frequency)
         if not peaks:
             note = "the record is too short for a periodogram"
             return untestable(self.name, self.statistic_name, math.inf, note)

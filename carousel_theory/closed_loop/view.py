@@ -75,10 +75,15 @@ class Residuals(Mapping[str, np.ndarray]):
         held = self._last[1]() if self._last is not None and self._last[0] == axis else None
         if held is not None:
             return held
-        residual = np.subtract(self._cleaned[axis], self._biases[axis], dtype=np.float64)
+        residual = self.fresh(axis)
         residual.setflags(write=False)
         self._last = (axis, weakref.ref(residual))
         return residual
+
+    def fresh(self, axis: str) -> np.ndarray:
+        """The residual of ``axis`` in a new, writable array that nothing else holds (the same values as
+        ``self[axis]``), for a caller that transforms it in place."""
+        return np.subtract(self._cleaned[axis], self._biases[axis], dtype=np.float64)
 
     def __iter__(self) -> Iterator[str]:
         return iter(self._biases)
