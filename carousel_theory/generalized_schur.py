@@ -234,15 +234,23 @@ def _spectra(polynomials: np.ndarray, size: int) -> np.ndarray:
     return scipy_fft.rfft(polynomials, size, axis=1)
 
 
-def _product_window(generator: np.ndarray, factor: np.ndarray, start: int, stop: int) -> np.ndarray:
-    """Coefficients start … stop − 1 of Σ_r generator_r(z) · factor_r(z) (rows r = A, B).
+def _carry(generator: np.ndarray, transfer_matrix: np.ndarray, accumulated: np.ndarray, start: int):
+    """The generator [A, B] M and the correction [A, B] N on coefficients start … m − 1 (m the
+    generator's length), in one FFT product: (m − start, 2) and (m − start, columns).
 
-    ``generator`` is (2, length) and ``factor`` is (2, degree + 1, columns); the result is
-    (stop − start, columns). One FFT size covers the whole linear product, so nothing wraps.
+    ``generator`` is (2, m), ``transfer_matrix`` (2, 2, start + 1) and ``accumulated``
+    (2, start, columns). The linear product has degree m − 1 + start; a cyclic one of size S ≥ m
+    folds only coefficients ≥ S onto 0 … start − 1, so S = m leaves the wanted ones exact.
     """
-    size = scipy_fft.next_fast_len(generator.shape[1] + factor.shape[1] - 1, real=True)
+    m = generator.shape[1]
+    degree = transfer_matrix.shape[2]
+    factor = np.zeros((2, degree, 2 + accumulated.shape[2]))
+    factor[:, :, :2] = transfer_matrix.transpose(0, 2, 1)
+    factor[:, : accumulated.shape[1], 2:] = accumulated
+    size = scipy_fft.next_fast_len(m, real=True)
     spectrum = _spectra(generator, size)[:, :, None] * _spectra(factor, size)
-    return scipy_fft.irfft(spectrum.sum(axis=0), size, axis=0)[start:stop]
+    product = scipy_fft.irfft(spectrum.sum(axis=0), size, axis=0)[start:m]
+    return product[:, :2], product[:, 2:]
 
 
 def _solve_range(first, second, residual, whitened, transfer: bool):
@@ -259,13 +267,11 @@ def _solve_range(first, second, residual, whitened, transfer: bool):
     left_m, left_n, left_log = _solve_range(
         first[:half], second[:half], residual[:half], whitened[:half], True
     )
-    generator = np.stack([first, second])
-    moved = _product_window(generator, left_m.transpose(0, 2, 1), half, m)  # (m − half, 2): A, B
-    carried = residual[half:] - _product_window(generator, left_n, half, m)
+    moved, correction = _carry(np.stack([first, second]), left_m, left_n, half)
     right_m, right_n, right_log = _solve_range(
         np.ascontiguousarray(moved[:, 0]),
         np.ascontiguousarray(moved[:, 1]),
-        carried,
+        residual[half:] - correction,
         whitened[half:],
         transfer,
     )
@@ -276,13 +282,17 @@ def _solve_range(first, second, residual, whitened, transfer: bool):
 
 
 def _compose(left_m, left_n, right_m, right_n, m):
-    """M = M_L M_R (degree ≤ m) and N = N_L + M_L N_R (degree ≤ m − 1), by FFT."""
+    """M = M_L M_R (degree ≤ m) and N = N_L + M_L N_R (degree ≤ m − 1), by one FFT product."""
     size = scipy_fft.next_fast_len(m + 1, real=True)
-    left = scipy_fft.rfft(left_m, size, axis=2)
-    product = np.einsum("rjf,jcf->rcf", left, scipy_fft.rfft(right_m, size, axis=2))
-    transfer_matrix = scipy_fft.irfft(product, size, axis=2)[:, :, : m + 1]
-    carried = np.einsum("rjf,jfk->rfk", left, scipy_fft.rfft(right_n, size, axis=1))
-    accumulated = scipy_fft.irfft(carried, size, axis=1)[:, :m]
+    right = np.zeros((2, right_m.shape[2], 2 + right_n.shape[2]))
+    right[:, :, :2] = right_m.transpose(0, 2, 1)
+    right[:, : right_n.shape[1], 2:] = right_n
+    product = np.einsum(
+        "rjf,jfc->rfc", scipy_fft.rfft(left_m, size, axis=2), scipy_fft.rfft(right, size, axis=1)
+    )
+    both = scipy_fft.irfft(product, size, axis=1)
+    transfer_matrix = both[:, : m + 1, :2].transpose(0, 2, 1)
+    accumulated = both[:, :m, 2:]
     accumulated[:, : left_n.shape[1]] += left_n
     return transfer_matrix, accumulated
 
@@ -321,9 +331,13 @@ def conditional_forecast(
     polynomials, accumulated, log_determinant = _solve_range(
         driving[:n], second, values, whitened, transfer=True
     )
-    mean = _convolve_columns(driving, accumulated[0], n, total)
-    # Generator after n steps on the future rows: [A₀, B₀] M_n with B₀ = σ_v (a constant).
-    generator = _convolve_columns(driving, polynomials[0].T, n, total)
+    # One FFT product gives both: the means from N and the generator after n steps on the future
+    # rows, [A₀, B₀] M_n with B₀ = σ_v (a constant).
+    columns = np.zeros((n + 1, 2 + accumulated.shape[2]))
+    columns[:, :2] = polynomials[0].T
+    columns[:n, 2:] = accumulated[0]
+    products = _convolve_columns(driving, columns, n, total)
+    generator, mean = products[:, :2], products[:, 2:]
     generator[0] += math.sqrt(sigma2_v) * polynomials[1, :, n]
     variance = np.cumsum((generator**2).sum(axis=1)) - sigma2_v
     return ConditionalForecast(

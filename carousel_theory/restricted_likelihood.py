@@ -21,11 +21,12 @@ Each evaluation is one pass of that recursion (about 0.55 s at n = 10⁵), so th
 built to need few: the Whittle likelihood of the first differences (O(n log n), biased for the
 started process, used only as a starting point) gives log ρ₀; three points around it, walking
 downhill by parabolic extrapolation when needed, bracket the maximum; Brent's method then starts
-from that bracket with parabolic steps, and stops by Brent's rule, the one of the former bounded
+from that bracket with parabolic steps (cubic ones once four points are known, while their values
+differ by more than rounding), and stops by Brent's rule, the one of the former bounded
 search over the whole of ``ratio_bounds`` (x within 2(√ε |x| + RATIO_TOLERANCE/3) of the
 maximiser). When the walk reaches a bound of ρ still climbing, the bounded search finishes on the
 strip between that bound and the walk's last interior point. On the ADIS16405 x axis at n = 10⁵ this
-takes 8 passes instead of 13; where the likelihood is very flat (ρ ≳ 10³, the z axis) or the maximum
+takes 7 passes instead of 13; where the likelihood is very flat (ρ ≳ 10³, the z axis) or the maximum
 is at a bound it can take a few more than the former search (``benchmarks/bench_reml_search.py``).
 No analytic gradient is used: tr(A⁻¹) and A⁻¹y are not by-products of the forward recursion, and
 carrying derivatives through every rotation would at least double the work of a pass (an estimate
@@ -139,6 +140,13 @@ _FIRST_STEP_LIMITS = (0.02, 0.25)
 _GOLDEN_SECTION = 0.5 * (3.0 - math.sqrt(5.0))
 _GOLDEN_RATIO = 0.5 * (1.0 + math.sqrt(5.0))
 _SQUARE_ROOT_EPSILON = math.sqrt(np.finfo(np.float64).eps)
+#: The cubic interpolation is used while the four points nearest x spread over more than this many
+#: tolerances; closer, the differences of the likelihood are too near its rounding for a cubic.
+_CUBIC_SPREAD = 100.0
+#: ... and while their values spread over more than _CUBIC_SPREAD times this many roundings of the
+#: likelihood (a sum of n logarithms, whose rounding error is some 10⁴ ε |ℓ| at n = 10⁵), so that a
+#: flat likelihood (ρ ≳ 10³) is left to Brent's parabola.
+_CUBIC_VALUE_DIGITS = 1e4
 
 
 def _whittle_log_ratio(sections: np.ndarray, d: float, log_bounds: tuple[float, float]) -> float:
@@ -153,8 +161,6 @@ def _whittle_log_ratio(sections: np.ndarray, d: float, log_bounds: tuple[float, 
     x axis log ρ̂ − log ρ_REML ≈ −0.6 at n = 6000 and −0.01 at n = 10⁵); the exact REML search
     corrects this.
     """
-    from scipy.optimize import minimize_scalar  # slow to import, needed only here
-
     from carousel_theory.noise_model import spectral_density
 
     differences = np.diff(sections, axis=1)
@@ -172,8 +178,30 @@ def _whittle_log_ratio(sections: np.ndarray, d: float, log_bounds: tuple[float, 
             float((periodogram / spectrum).mean())
         )
 
-    result = minimize_scalar(negative_log_likelihood, bounds=log_bounds, method="bounded")
-    return float(result.x)
+    return _grid_then_brent(negative_log_likelihood, log_bounds)
+
+
+#: Points of the grid in log ρ on which the Whittle start's search begins.
+_WHITTLE_GRID = 41
+
+
+def _grid_then_brent(objective: Callable[[float], float], log_bounds: tuple[float, float]) -> float:
+    """The minimiser of a cheap ``objective`` on ``log_bounds``: the best of an even grid, then Brent's
+    method (:func:`_brent_minimum`) on the bracket of its two neighbours; a bound when the grid's best
+    is there. (scipy.optimize would do it too, at a fifth of a second to import.)"""
+    grid = np.linspace(log_bounds[0], log_bounds[1], _WHITTLE_GRID)
+    values = [objective(float(point)) for point in grid]
+    best = int(np.argmin(values))
+    if best in (0, grid.size - 1):
+        return float(grid[best])
+    memo = dict(zip(grid.tolist(), values, strict=True))
+
+    def remembered(point: float) -> float:
+        if point not in memo:
+            memo[point] = objective(point)
+        return memo[point]
+
+    return _brent_minimum(remembered, float(grid[best - 1]), float(grid[best]), float(grid[best + 1]))
 
 
 def _vertex(a: float, fa: float, b: float, fb: float, c: float, fc: float) -> float | None:
@@ -221,19 +249,52 @@ def _bracket(objective: Callable[[float], float], start: float, low: float, high
             left, middle, right = middle, right, _downhill(objective, middle, right, high, points)
 
 
-def _parabolic_step(x, fx, w, fw, v, fv, left, right, last_step, tolerance):
-    """The step to the vertex of the parabola through (x, w, v), or None where Brent's method
-    rejects it (not inside the bracket, or not shorter than half the step before last)."""
+def _cubic_vertex(points: list[tuple[float, float]], x: float) -> float | None:
+    """The local minimum nearest x of the cubic through the four evaluated points nearest x (x one of
+    them), as a step from x; None when fewer than four are known, when they lie within
+    ``_CUBIC_SPREAD`` tolerances of x or their values within ``_CUBIC_SPREAD · _CUBIC_VALUE_DIGITS``
+    roundings (the cubic would fit rounding errors), or when the cubic has no local minimum."""
+    if len(points) < 4:
+        return None
+    nearest = sorted(points, key=lambda point: abs(point[0] - x))[:4]
+    offsets = np.array([point[0] - x for point in nearest])
+    if np.abs(offsets).max() < _CUBIC_SPREAD * (_SQUARE_ROOT_EPSILON * abs(x) + RATIO_TOLERANCE / 3.0):
+        return None
+    values = np.array([point[1] for point in nearest])
+    if np.ptp(values) < _CUBIC_SPREAD * _CUBIC_VALUE_DIGITS * np.finfo(np.float64).eps * abs(values[0]):
+        return None
+    cubic, quadratic, linear, _ = np.linalg.solve(
+        np.vander(offsets, 4), values - values[np.argmin(np.abs(offsets))]
+    )
+    # Stationary points 3c t² + 2q t + l = 0; the minimum is where 6c t + 2q > 0.
+    if cubic == 0.0:
+        return -linear / (2.0 * quadratic) if quadratic > 0.0 else None
+    discriminant = quadratic * quadratic - 3.0 * cubic * linear
+    if discriminant < 0.0:
+        return None
+    return (-quadratic + math.sqrt(discriminant)) / (3.0 * cubic)
+
+
+def _interpolated_step(x, fx, w, fw, v, fv, points, last_step):
+    """The step of Brent's parabola through (x, w, v), or, once four points are known, to the local
+    minimum of the cubic through the four nearest x (:func:`_cubic_vertex`): near the maximum of a
+    smooth likelihood its error is of the order of the product of three distances to the maximiser
+    instead of two, which saves a pass or two of the recursion. None where neither exists."""
+    cubic = _cubic_vertex(points, x)
+    if cubic is not None:
+        return cubic
     r = (x - w) * (fx - fv)
     q = (x - v) * (fx - fw)
     p = (x - v) * q - (x - w) * r
     q = 2.0 * (q - r)
-    if q > 0.0:
-        p = -p
-    q = abs(q)
-    if not (abs(p) < abs(0.5 * q * last_step) and q * (left - x) < p < q * (right - x)):
+    return -p / q if q != 0.0 else None
+
+
+def _accepted_step(step, x, left, right, last_step, tolerance):
+    """``step`` where Brent's method accepts an interpolation step (strictly inside the bracket and
+    shorter than half the step before last; moved to ± tol next to an end), else None."""
+    if step is None or not (abs(step) < abs(0.5 * last_step) and left < x + step < right):
         return None
-    step = p / q
     if (x + step - left) < 2.0 * tolerance or (right - x - step) < 2.0 * tolerance:
         return tolerance if 0.5 * (left + right) >= x else -tolerance
     return step
@@ -242,26 +303,29 @@ def _parabolic_step(x, fx, w, fw, v, fv, left, right, last_step, tolerance):
 def _brent_minimum(objective: Callable[[float], float], left: float, middle: float, right: float) -> float:
     """Brent's minimisation (Algorithms for Minimization without Derivatives, 1973, ch. 5; the rule of
     scipy's bounded search) started from a bracket instead of a golden-section point, so that its
-    first steps are parabolic. Ends when the bracket around x is at most 2·tol wide on either side,
-    tol = √ε |x| + RATIO_TOLERANCE/3."""
+    first steps are interpolations (:func:`_interpolated_step`). Ends when the bracket around x is at
+    most 2·tol wide on either side, tol = √ε |x| + RATIO_TOLERANCE/3."""
     x, fx = middle, objective(middle)
     (fw, w), (fv, v) = sorted([(objective(left), left), (objective(right), right)])
+    points = [(x, fx), (w, fw), (v, fv)]
     step = last_step = right - left
     while True:
         tolerance = _SQUARE_ROOT_EPSILON * abs(x) + RATIO_TOLERANCE / 3.0
         centre = 0.5 * (left + right)
         if abs(x - centre) <= 2.0 * tolerance - 0.5 * (right - left):
             return x
-        parabolic = None
+        interpolated = None
         if abs(last_step) > tolerance:
-            parabolic = _parabolic_step(x, fx, w, fw, v, fv, left, right, last_step, tolerance)
-        if parabolic is None:
+            proposed = _interpolated_step(x, fx, w, fw, v, fv, points, last_step)
+            interpolated = _accepted_step(proposed, x, left, right, last_step, tolerance)
+        if interpolated is None:
             last_step = (right - x) if x < centre else (left - x)
             step = _GOLDEN_SECTION * last_step
         else:
-            last_step, step = step, parabolic
+            last_step, step = step, interpolated
         u = x + (step if abs(step) >= tolerance else math.copysign(tolerance, step))
         fu = objective(u)
+        points.append((u, fu))
         if fu <= fx:
             left, right = (x, right) if u >= x else (left, x)
             v, fv, w, fw, x, fx = w, fw, x, fx, u, fu
@@ -279,7 +343,6 @@ def _maximise_ratio(
     """log ρ maximising the profile at order d: Brent's method from a bracket found around ``start``;
     by scipy's bounded search on the strip next to a bound when the walk reached it, or on the whole of
     ``log_bounds`` when they are too narrow for a bracket."""
-    from scipy.optimize import minimize_scalar  # slow to import, needed only here
 
     def objective(log_ratio: float) -> float:
         return -evaluate(d, log_ratio)[0]
@@ -288,6 +351,8 @@ def _maximise_ratio(
     found = _bracket(objective, start, low, high, first_step) if high - low > 4.0 * first_step else None
     if found is not None and len(found) == 3:
         return _brent_minimum(objective, *found)
+    from scipy.optimize import minimize_scalar  # slow to import, needed only here
+
     strip = log_bounds if found is None else found
     result = minimize_scalar(objective, bounds=strip, method="bounded", options={"xatol": RATIO_TOLERANCE})
     return float(result.x)

@@ -185,3 +185,21 @@ def test_narrow_ratio_bounds_are_searched_whole():
     expected = _dense_maximiser(sections, 0.5, (np.log(bounds[0]), np.log(bounds[1])))
     assert np.log(bounds[0]) <= got <= np.log(bounds[1])
     assert abs(got - expected) <= _search_tolerance(expected) + 1e-8
+
+
+def test_the_cubic_step_reaches_the_local_minimum_of_a_cubic_exactly():
+    # f(t) = 1000 (t³ − 3t) has its local minimum at t = 1; from x = 0.8 the step is 0.2.
+    from carousel_theory.restricted_likelihood import _cubic_vertex
+
+    points = [(t, 1000.0 * (t**3 - 3.0 * t)) for t in (0.8, 0.5, 1.3, 2.0)]
+    assert _cubic_vertex(points, 0.8) == pytest.approx(0.2, rel=1e-12)
+    # For −f the local minimum is at t = −1 (step −1.8); with three points there is no cubic.
+    assert _cubic_vertex([(t, -value) for t, value in points], 0.8) == pytest.approx(-1.8, rel=1e-12)
+    assert _cubic_vertex(points[:3], 0.8) is None
+
+
+def test_the_cubic_is_not_used_where_the_values_differ_by_rounding_only():
+    from carousel_theory.restricted_likelihood import _cubic_vertex
+
+    flat = [(t, 13279.0 + 1e-10 * t**2) for t in (7.0, 7.1, 7.2, 7.3)]
+    assert _cubic_vertex(flat, 7.1) is None

@@ -14,7 +14,6 @@ import zlib
 from pathlib import Path
 
 import numpy as np
-from scipy.io.matlab import MatReadError
 
 from carousel_theory.readers._common import check_values, is_matrix_shape, matrix_columns
 from carousel_theory.readers.hdf5 import read_hdf5
@@ -24,18 +23,24 @@ __all__ = ["read_matlab"]
 _NUMERIC_CLASSES = frozenset(
     ("double", "single", "logical", *(f"{sign}int{bits}" for sign in ("", "u") for bits in (8, 16, 32, 64)))
 )
-#: What a damaged MAT file makes scipy.io raise.
-_READ_ERRORS = (
-    MatReadError,
-    ValueError,
-    OSError,
-    TypeError,
-    EOFError,
-    IndexError,
-    KeyError,
-    zlib.error,
-    NotImplementedError,
-)
+
+
+def _read_errors() -> tuple[type[BaseException], ...]:
+    """What a damaged MAT file makes scipy.io raise (scipy.io is imported only when a .mat file is
+    read: it costs about a fifth of a second, every command that reads a recording would pay it)."""
+    from scipy.io.matlab import MatReadError
+
+    return (
+        MatReadError,
+        ValueError,
+        OSError,
+        TypeError,
+        EOFError,
+        IndexError,
+        KeyError,
+        zlib.error,
+        NotImplementedError,
+    )
 
 
 def _version(path: Path) -> int:
@@ -45,7 +50,7 @@ def _version(path: Path) -> int:
     try:
         with path.open("rb") as handle:
             major, _ = matfile_version(handle)
-    except _READ_ERRORS as error:
+    except _read_errors() as error:
         raise ValueError(f"{path}: not a MATLAB .mat file ({str(error).splitlines()[0]})") from None
     return int(major)
 
@@ -70,7 +75,7 @@ def read_matlab(path: Path, max_values: int) -> dict[str, np.ndarray]:
                 f"{[(name, matlab_class) for name, _, matlab_class in listed]}"
             )
         loaded = loadmat(path, variable_names=[name for name, _ in usable], squeeze_me=False)
-    except _READ_ERRORS as error:
+    except _read_errors() as error:
         message = str(error).splitlines()[0] if str(error) else type(error).__name__
         if message.startswith(str(path)):
             raise
