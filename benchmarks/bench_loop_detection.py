@@ -101,7 +101,7 @@ NULL_DISTRIBUTIONS = [
     "(the robust scale's bias is removed; tests/test_effects.py checks the tail at 3σ) |",
     "| steps, warm-up, temperature | GLS linear statistic L = Σ w_t e_t, studentized: z = L/√V(θ̂) | "
     "parametric bootstrap of the studentized statistic from the fitted model (carousel_theory/closed_loop/"
-    "studentized.py): 1000 Allan-variance vectors drawn as for the 1/f detector, the variances refitted "
+    "studentized.py): 500 Allan-variance vectors drawn as for the 1/f detector, the variances refitted "
     "by the fitter's own non-negative GLS step, and the Gaussian L integrated exactly given each refit "
     "(p = mean 2Φ̄(|z| √(V*/V₀)), accurate far in the tail). L is linear and the Allan variances "
     "quadratic in one record: their dependence is carried to first order exactly (the Allan variance "

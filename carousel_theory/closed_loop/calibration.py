@@ -279,8 +279,8 @@ class AllanVarianceSampler:
         covariance = np.asarray(fit.result.tau_covariance, dtype=np.float64)
         short, long = slice(0, first), slice(first, len(fit.sizes))
         if first in (0, len(fit.sizes)):
-            factor = np.linalg.cholesky(covariance[short, short]) if first else np.zeros((0, 0))
-            regression = np.zeros((first, len(fit.sizes) - first))
+            factor: np.ndarray = np.linalg.cholesky(covariance[short, short]) if first else np.zeros((0, 0))
+            regression: np.ndarray = np.zeros((first, len(fit.sizes) - first))
             return cls(noise, fit.sizes, curve, length, first, regression, factor)
         regression = np.linalg.solve(covariance[long, long], covariance[long, short]).T
         residual = covariance[short, short] - regression @ covariance[long, short]

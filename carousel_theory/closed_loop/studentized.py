@@ -85,7 +85,7 @@ __all__ = [
 ]
 
 #: Bootstrap replicates of the fitted variance per test.
-REPLICATES = 1000
+REPLICATES = 500
 #: A walk or 1/f variance fitted below this many of its standard errors is raised to it in the model the
 #: replicates are drawn from (module docstring).
 BOUNDARY_ERRORS = 2.0
@@ -143,7 +143,7 @@ class AllanRefit:
 
 #: Values of s² = L²/V₀ at which each replicate's fitted variance is evaluated (module docstring); the
 #: tail the loop's tests use lies at s² ≈ 16 … 50.
-SQUARE_GRID = (0.0, 4.0, 16.0, 36.0, 64.0, 100.0)
+SQUARE_GRID = (0.0, 9.0, 25.0, 49.0, 100.0)
 
 
 @dataclass(frozen=True)
@@ -204,12 +204,15 @@ def off_boundary(noise: FittedNoise) -> FittedNoise:
     """``noise`` with the walk and the 1/f variance each raised to at least BOUNDARY_ERRORS of its GLS
     standard errors (module docstring); unchanged where they are already above."""
     errors, model = noise.standard_errors, noise.model
-    raised = {
-        name: max(float(getattr(model, name)), BOUNDARY_ERRORS * errors[name])
-        for name in ("rrw_variance", "flicker_variance")
-        if name in errors and math.isfinite(errors[name])
-    }
-    return replace(noise, model=replace(model, **raised)) if raised else noise
+
+    def raised(name: str) -> float:
+        value, error = float(getattr(model, name)), errors.get(name, math.nan)
+        return max(value, BOUNDARY_ERRORS * error) if math.isfinite(error) else value
+
+    walk, flicker = raised("rrw_variance"), raised("flicker_variance")
+    if (walk, flicker) == (model.rrw_variance, model.flicker_variance):
+        return noise
+    return replace(noise, model=replace(model, rrw_variance=walk, flicker_variance=flicker))
 
 
 def studentized_reference(
