@@ -25,7 +25,7 @@ from carousel_theory.closed_loop.residual_model import (
 )
 from carousel_theory.closed_loop.signal_detectors import residual_periodogram
 from carousel_theory.closed_loop.view import FittedEffect, ResidualView
-from carousel_theory.fitting import _generalized_least_squares
+from carousel_theory.fitting import generalized_least_squares
 from carousel_theory.noise_model import term_allan_variance
 
 __all__ = ["ColoredNoiseDetector", "FlickerDetector", "FlickerGoodnessOfFit", "NestedAllanStatistic"]
@@ -136,8 +136,8 @@ class NestedAllanStatistic:
         return cls(cholesky, _design(reduced, fit.sizes, ar), full, dof)
 
     def __call__(self, allan: np.ndarray) -> float:
-        without = _generalized_least_squares(self.reduced, allan, self.cholesky)[1]
-        with_flicker = _generalized_least_squares(self.full, allan, self.cholesky)[1]
+        without = generalized_least_squares(self.reduced, allan, self.cholesky)[1]
+        with_flicker = generalized_least_squares(self.full, allan, self.cholesky)[1]
         return nested_statistic(without, with_flicker, self.dof)
 
 

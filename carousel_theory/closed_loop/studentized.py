@@ -70,7 +70,7 @@ from carousel_theory.closed_loop.residual_model import (
     noise_variances,
     statistic_variance_units,
 )
-from carousel_theory.fitting import COMPONENT_OF_PARAMETER, _generalized_least_squares
+from carousel_theory.fitting import COMPONENT_OF_PARAMETER, generalized_least_squares
 from carousel_theory.noise_model import term_allan_variance
 
 __all__ = [
@@ -131,7 +131,7 @@ class AllanRefit:
 
     def variance(self, allan: np.ndarray) -> float:
         """V(θ̂) of the non-negative GLS fit of ``allan`` (the fitter's own least-squares step)."""
-        theta, _, _ = _generalized_least_squares(self.design, allan, self.cholesky)
+        theta, _, _ = generalized_least_squares(self.design, allan, self.cholesky)
         return float(np.dot(theta, self.coefficients))
 
     def linear_variance(self, allan: np.ndarray) -> float:
