@@ -73,6 +73,7 @@ __all__ = [
     "fit_noise_model",
     "fit_observed",
     "fit_recording",
+    "generalized_least_squares",
     "nested_test",
     "observe_allan",
     "yule_walker",
