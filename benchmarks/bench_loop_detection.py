@@ -9,8 +9,8 @@
    a strong rate random walk; each effect alone at the same amplitude for reference.
 4. **Outside the catalogue**: a sawtooth must give ``unexplained``, never a catalogue name.
 5. **Single decisions** on clean records: the rejection rate of each trend detector and of the 1/f
-   detector (bootstrap and former χ²₁ / F references) at a nominal level of 0.05, and the 1/f
-   detector's power under both references.
+   detector (bootstrap and former χ²₁ / F references) at a nominal level of 0.05, the coverage of the
+   trend statistics' variance bound, and the 1/f detector's power under both references.
 
 Writes docs/loop_detection_rates.md (deterministic for given arguments: seeded, no timings in the file;
 the mean loop time per record length is printed).
@@ -99,18 +99,12 @@ NULL_DISTRIBUTIONS = [
     "|---|---|---|",
     "| spikes | max robust abs z about the running median | normal tail, Bonferroni over samples and axes "
     "(the robust scale's bias is removed; tests/test_effects.py checks the tail at 3σ) |",
-    "| steps, warm-up, temperature | GLS linear statistic L = Σ w_t e_t, studentized: z = L/√V(θ̂) | "
-    "parametric bootstrap of the studentized statistic from the fitted model (carousel_theory/closed_loop/"
-    "studentized.py): 500 Allan-variance vectors drawn as for the 1/f detector, the variances refitted "
-    "by the fitter's own non-negative GLS step, and the Gaussian L integrated exactly given each refit "
-    "(p = mean 2Φ̄(|z| √(V*/V₀)), accurate far in the tail). L is linear and the Allan variances "
-    "quadratic in one record: their dependence is carried to first order exactly (the Allan variance "
-    "of Σw, of the removed regressor's direction, and each refit evaluated along L²); checked against "
-    "20,000 whole simulated records (tests/test_trend_nulls.py: 0.038 at a nominal 0.05; with L and the "
-    "Allan variances drawn independently 0.14). A walk or 1/f variance fitted below 2 of its standard "
-    "errors is raised to that in the model the replicates come from (at the boundary a plain "
-    "parametric bootstrap understates the variance's spread). Replaces the Berger–Boos upper bound "
-    "V̂ + Φ̄⁻¹(γ) se(V̂), whose delta-method coverage failed on 1 h records (0.155 at γ = 0.1) |",
+    "| steps, warm-up, temperature | GLS linear statistic L = Σ w_t e_t | exactly Gaussian given the noise "
+    "variances; the variance is taken at its upper (1 − γ) confidence bound V̂ + Φ̄⁻¹(γ) se(V̂) from the "
+    "fitter's GLS covariance (delta method) and γ = 0.1 × the detector's rate is added to the p-value "
+    "(Berger & Boos 1994). The bound's coverage is asymptotic, and is measured below: se(V̂) is evaluated "
+    "at the fitted variances, so it shrinks with V̂ and the bound is exceeded more often than γ on long "
+    "records (first order: Φ(−z_γ / (1 + z_γ r)), r = se/V); on 300 s records it is very wide |"
     "| sinusoid | max periodogram ordinate / (model spectrum × median level) | exact: an Exp(1) ordinate "
     "over the median of a block of Exp(1) ordinates (Rényi's representation), Bonferroni over ordinates |",
     "| colored noise | log ratio of the median whitened ordinates at 10 % and 42 % of f_s | ratio of "
@@ -125,7 +119,7 @@ NULL_DISTRIBUTIONS = [
     "χ²_ν; long τ: sequential parametric bootstrap from the fitted model, exact size "
     "(carousel_theory/closed_loop/calibration.py) |",
     "",
-    "The bootstraps draw their replicates from a generator seeded with a digest of the observed values "
+    "Both bootstraps draw their replicates from a generator seeded with a digest of the observed values "
     "(calibration.bootstrap_generator): a recording always gets the same decision, and different recordings "
     "independent replicates. With one fixed stream every recording would meet the same critical value, and "
     "the size over recordings would be that of one draw rather than 1/(B + 1).",
@@ -215,36 +209,24 @@ def run_ladders(seeds: int) -> list[tuple]:
     return rows
 
 
-def _warmup_decision(result: LoopResult) -> list[float] | None:
-    """[|z|, threshold] of the warm-up decision that named it, else of the last one that tested it."""
-    tested = [d for step in result.steps for d in step.detections if d.effect == "warmup" and d.testable]
-    if not tested:
-        return None
-    chosen = next((d for d in tested if d.significant), tested[-1])
-    return [float(chosen.statistic), float(chosen.threshold)]
-
-
 def run_pairs(
     seeds: int, stored: Callable[[list], None] | None = None, cases: list[int] | None = None
-) -> list[tuple[PairCase, dict[str, int], int, int, int, list]]:
+) -> list[tuple[PairCase, dict[str, int], int, int, int]]:
     """Each pair case (or those of index ``cases``) on ``seeds`` 1 h records; ``stored`` is called after
-    every record with the rows so far (case, named counts, all named, other name, records, and the
-    warm-up's [|z|, threshold] per record)."""
-    rows: list[tuple[PairCase, dict[str, int], int, int, int, list]] = []
+    every record with the rows so far (case, named counts, all named, other name, records)."""
+    rows: list[tuple[PairCase, dict[str, int], int, int, int]] = []
     for case in progress([PAIRS[i] for i in cases] if cases else PAIRS, label="pairs"):
         named = dict.fromkeys(case.expected, 0)
         both = other = 0
-        decisions: list = []
         for seed in range(seeds):
             result = run_loop(_recording(HOUR, case.effects, 40_000 + seed, case.rrw_variance))
             for name in case.expected:
                 named[name] += name in result.effects
             both += all(name in result.effects for name in case.expected)
             other += any(e not in (*case.expected, "none", "unexplained") for e in result.effects)
-            decisions.append(_warmup_decision(result))
             if stored is not None:
-                stored([*rows, (case, dict(named), both, other, seed + 1, decisions)])
-        rows.append((case, named, both, other, seeds, decisions))
+                stored([*rows, (case, dict(named), both, other, seed + 1)])
+        rows.append((case, named, both, other, seeds))
     return rows
 
 
@@ -264,6 +246,8 @@ def run_outside(seeds: int) -> Counter:
 #: Nominal level at which the detectors' own rejection rates on clean records are counted (large enough
 #: that a 2-point excess shows in a few thousand records).
 NOMINAL = 0.05
+#: Confidence levels at which the coverage of the trend statistics' variance bound is counted.
+COVERAGE_GAMMAS = (0.1, 0.05, 0.01, 0.001)
 #: Seeds of the calibration records (apart from the loop's).
 CALIBRATION_SEED = 50_000
 
@@ -287,6 +271,36 @@ def _asymptotic_flicker_rejects(view: Any, alpha: float) -> bool:
     return any(_asymptotic_flicker_log_p(view, axis) < np.log(alpha / tests) for axis in view.axes)
 
 
+def _coverage_misses(view: Any, axis: str) -> dict[str, list[int]]:
+    """For the weights of a middle step, a warm-up (τ_c = T/20) and the temperature column, chosen under
+    the fit: is V(θ) above the upper bound V̂ + Φ̄⁻¹(γ) se(V̂) at each γ of COVERAGE_GAMMAS?"""
+    from carousel_theory.closed_loop.linear_statistics import gls_weights, step_scan
+    from carousel_theory.closed_loop.residual_model import (
+        FittedNoise,
+        statistic_variance,
+        statistic_variance_error,
+    )
+    from carousel_theory.closed_loop.trend_detectors import _exponential
+    from carousel_theory.noise_model import NoiseModel
+
+    true = FittedNoise(NoiseModel(RATE, white_variance=WHITE, rrw_variance=WALK))
+    span = float(view.time[-1] - view.time[0])
+    weights = {
+        "steps": step_scan(view, axis).middle_weights,
+        "warmup": gls_weights(view, axis, _exponential(view, span / 20.0)),
+        "temperature": gls_weights(view, axis, view.temperature),
+    }
+    misses = {}
+    for name, w in weights.items():
+        spread = statistic_variance_error(view.fits[axis].noise, w)
+        truth = statistic_variance(true, w)
+        misses[name] = [
+            int(spread.variance + float(stats.norm.isf(g)) * spread.standard_error < truth)
+            for g in COVERAGE_GAMMAS
+        ]
+    return misses
+
+
 def _calibration_record(samples: int, seed: int) -> dict[str, Any]:
     from carousel_theory.closed_loop.detectors import DETECTORS
     from carousel_theory.closed_loop.view import ModelSpec, build_view
@@ -295,7 +309,7 @@ def _calibration_record(samples: int, seed: int) -> dict[str, Any]:
     view = build_view(recording, ("wx", "wy"), ModelSpec())
     rejected = {name: bool(DETECTORS[name].detect(view, NOMINAL).significant) for name in TREND_AND_FLICKER}
     rejected["flicker (χ²₁ / F reference)"] = _asymptotic_flicker_rejects(view, NOMINAL)
-    return {"rejected": rejected}
+    return {"rejected": rejected, "misses": _coverage_misses(view, "wx")}
 
 
 TREND_AND_FLICKER = ("steps", "warmup", "temperature", "flicker")
@@ -303,14 +317,17 @@ TREND_AND_FLICKER = ("steps", "warmup", "temperature", "flicker")
 
 def run_calibration(counts: dict[int, int], stored: Callable[[dict], None]) -> None:
     """Clean records of each duration: each detector's rejections at NOMINAL (1/f by both references)
-    stored after every record."""
+    and the coverage misses of the variance bound; stored after every record."""
     tallies: dict[str, Any] = {}
     for duration, count in counts.items():
-        tally = tallies.setdefault(str(duration), {"runs": 0, "rejected": Counter()})
+        tally = tallies.setdefault(str(duration), {"runs": 0, "rejected": Counter(), "misses": {}})
         for seed in progress(range(count), label=f"calibration {duration} s"):
             record = _calibration_record(int(duration * RATE), seed)
             tally["runs"] += 1
             tally["rejected"].update(name for name, value in record["rejected"].items() if value)
+            for name, misses in record["misses"].items():
+                total = tally["misses"].setdefault(name, [0] * len(COVERAGE_GAMMAS))
+                tally["misses"][name] = [a + b for a, b in zip(total, misses, strict=True)]
             stored(tallies)
 
 
@@ -359,6 +376,22 @@ def _calibration_lines(tallies: dict[str, Any], power: list[list] | None) -> lis
     for duration, tally in sorted(tallies.items(), key=lambda item: int(item[0])):
         cells = [_rate_cell(tally["rejected"].get(name, 0), tally["runs"]) for name in names]
         lines.append(f"| {int(duration):g} s | {tally['runs']} | " + " | ".join(cells) + " |")
+    lines += [
+        "",
+        "## Coverage of the trend statistics' variance bound",
+        "",
+        "How often the true variance V(θ) of a GLS statistic exceeds its upper bound V̂ + Φ̄⁻¹(γ) se(V̂) "
+        "(rate, 95 % Clopper–Pearson), for the weights of a step in the middle, a warm-up with τ_c = T/20 "
+        "and the temperature column, chosen under the fit of axis wx; a valid bound is exceeded at most γ "
+        "of the time.",
+        "",
+        "| duration | weights | " + " | ".join(f"γ = {g:g}" for g in COVERAGE_GAMMAS) + " |",
+        "|---|---|" + "---|" * len(COVERAGE_GAMMAS),
+    ]
+    for duration, tally in sorted(tallies.items(), key=lambda item: int(item[0])):
+        for name, misses in tally["misses"].items():
+            cells = [_rate_cell(m, tally["runs"]) for m in misses]
+            lines.append(f"| {int(duration):g} s | {name} | " + " | ".join(cells) + " |")
     if power:
         lines += [
             "",
@@ -458,70 +491,55 @@ def _pair_rows(parts: Path) -> list[tuple]:
     best: dict[int, list] = {}
     for path in sorted(parts.glob("pairs*.json")):
         for index, *row in json.loads(path.read_text(encoding="utf-8")):
-            if index not in best or row[3] > best[index][3]:
+            if index not in best or row[-1] > best[index][-1]:
                 best[index] = row
     return [(PAIRS[index], *best[index]) for index in sorted(best)]
 
 
-def _median_cell(values: list[float]) -> str:
-    return f"{float(np.median(values)):.1f}" if values else "—"
-
-
 def _pair_lines(rows: list) -> list[str]:
     known = _known_variance_warmup_z([case for case, *_ in rows])
-    counts = sorted({row[4] for row in rows})
+    counts = sorted({row[-1] for row in rows})
     seeds_text = f"{counts[0]} seeds each" if len(counts) == 1 else "records per case as counted"
     lines = [
         f"## Effects that mask each other, 1 h records, {seeds_text}",
         "",
         "Warm-up and temperature statistics are computed with the competing stochastic term refitted jointly "
         "with the regressor (1/f noise for the warm-up, the rate random walk for the temperature), so the "
-        "stochastic term fitted with the effect still in the data cannot hide it. 'warm-up z, variances "
-        "known' is the warm-up's z with the injected noise variances known; the |z| at which it would be "
-        f"named with known variances is {_warmup_threshold(1):.2f} in iteration 1 and "
-        f"{_warmup_threshold(2):.2f} in iteration 2. The loop does not know the variances: it studentizes "
-        "by the fitted ones and takes its threshold from the bootstrap of that studentized statistic, per "
-        "record. The last two columns are the medians over the records of the warm-up's studentized |z| "
-        "and of that threshold (the decision that named it, else the last that tested it): where the "
-        "threshold is above the z the warm-up is below its detection limit with fitted variances.",
+        "stochastic term fitted with the effect still in the data cannot hide it. The last column is the "
+        "warm-up's z with the injected noise variances known, against the |z| at which it is named with "
+        f"known variances in iteration 1 ({_warmup_threshold(1):.2f}) and 2 ({_warmup_threshold(2):.2f}): "
+        "above them the warm-up is above its detection limit under that noise.",
         "",
         "| case | injected | σ_q² | each named | all named | another catalogue name | warm-up z, variances "
-        "known | warm-up studentized z (median) | its threshold (median) |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "known |",
+        "|---|---|---|---|---|---|---|",
     ]
-    for case, named, both, other, seeds, decisions in rows:
+    for case, named, both, other, seeds in rows:
         each = ", ".join(f"{name} {count}/{seeds}" for name, count in named.items())
         z = f"{known[case.label]:.1f}" if case.label in known else "—"
-        tested = [d for d in decisions if d is not None and _injected(case, "warmup")]
         lines.append(
             f"| {case.label} | {'; '.join(case.effects)} | {case.rrw_variance:g} | {each} | {both}/{seeds} | "
-            f"{other}/{seeds} | {z} | {_median_cell([d[0] for d in tested])} | "
-            f"{_median_cell([d[1] for d in tested])} |"
+            f"{other}/{seeds} | {z} |"
         )
     return [*lines, "", *_masking_notes(rows, known)]
 
 
 def _masking_notes(rows: list, known: dict[str, float]) -> list[str]:
     """A plain statement for each case whose warm-up is above its known-variance detection limit in
-    both iterations yet named in fewer than 8 of 10 records: where its studentized threshold lies."""
+    both iterations yet named in fewer than half of the records."""
     notes = []
-    for case, named, _, _, seeds, decisions in rows:
+    for case, named, _, _, seeds in rows:
         z = known.get(case.label)
-        if z is None or z <= _warmup_threshold(2) or 10 * named.get("warmup", 0) >= 8 * seeds:
+        if z is None or z <= _warmup_threshold(2) or 2 * named.get("warmup", 0) >= seeds:
             continue
-        tested = [d for d in decisions if d is not None]
-        below = sum(d[0] < d[1] for d in tested)
         notes.append(
-            f"**Not achieved — {case.label}:** the warm-up is named in {named['warmup']}/{seeds} records. "
-            f"With the variances known its z ({z:.1f}) is above the limit of both iterations; with them "
-            f"fitted, its studentized |z| was below the record's bootstrap threshold in {below} of "
-            f"{len(tested)} records (medians {_median_cell([d[0] for d in tested])} and "
-            f"{_median_cell([d[1] for d in tested])}). With a 1/f term fitted jointly the statistic's "
-            "variance rests on the few long-τ Allan variances that separate the walk from the 1/f term "
-            "(its bootstrap spread is a factor of ten between the 1st and 99th percentile), so the "
-            "studentized statistic has a tail like Student's t with few degrees of freedom, and at the "
-            "loop's per-test rate its threshold lies above the known-variance z: under this noise the "
-            "warm-up is below its detection limit when the variances must be estimated from the record."
+            f"**Not achieved — {case.label}:** the warm-up is named in {named['warmup']}/{seeds} records "
+            f"although with the variances known its z ({z:.1f}) is above the limit of both iterations. The "
+            "joint test loses it in the variance of its statistic, not in its projection: with a 1/f term "
+            "in the noise model the statistic's variance is dominated by the fitted 1/f variance, whose "
+            "standard error is a large fraction of it, and the upper confidence bound of that variance "
+            "(the nuisance part of the p-value) then lowers z below the threshold; the 1/f term is named "
+            "and the warm-up, tested again with 1/f in the model, stays below it."
         )
     return [*notes, ""] if notes else []
 
@@ -536,7 +554,7 @@ def _load(parts: Path, name: str) -> object:
 
 
 def _json_tally(tally: dict[str, Any]) -> dict[str, Any]:
-    return {"runs": tally["runs"], "rejected": dict(tally["rejected"])}
+    return {"runs": tally["runs"], "rejected": dict(tally["rejected"]), "misses": tally["misses"]}
 
 
 def _clean_record(tally: CleanTally) -> list:

@@ -40,10 +40,9 @@ __all__ = [
 ]
 
 
-#: The reference of the GLS trend statistics (steps, warm-up, temperature; closed_loop/studentized.py).
-_STUDENTIZED_REFERENCE = (
-    "studentized by the fitted variances and referred to a parametric bootstrap of that studentized "
-    "statistic from the fitted model (variances refitted per replicate, the Gaussian part exact)"
+#: The reference of the GLS trend statistics (steps, warm-up, temperature; closed_loop/detection.py).
+_BOUNDED_REFERENCE = (
+    "normal reference with the statistic's variance at its upper confidence bound (Berger–Boos)"
 )
 
 
@@ -91,7 +90,7 @@ class Warmup(Effect):
         "max over 8 time constants (log-spaced, T/500 … T/4) of |z| of the GLS projection of the residual "
         "on e^{−t/τ}, the noise refitted jointly with the transient and with a 1/f term when the residual "
         "without the transient asks for one; "
-        + _STUDENTIZED_REFERENCE
+        + _BOUNDED_REFERENCE
         + "; Bonferroni over the grid and the axes"
     )
     enters_model = (
@@ -111,7 +110,7 @@ class Temperature(Effect):
     summary = "bias linear in the temperature column, k (T − T̄)"
     detection = (
         "|z| of the GLS projection of the residual on the temperature column, the noise (rate random walk "
-        "included) refitted jointly with the regressor; " + _STUDENTIZED_REFERENCE + "; Bonferroni over axes"
+        "included) refitted jointly with the regressor; " + _BOUNDED_REFERENCE + "; Bonferroni over axes"
     )
     enters_model = "a term k_axis (T_t − T̄) added to the bias of each axis (k in rad/s per °C)"
     removal = "k by generalised least squares on each axis; subtracted"
@@ -130,7 +129,7 @@ class Steps(Effect):
     detection = (
         "max over t₀ of |z| of the generalised-least-squares estimate of a bias step between samples t₀ and "
         "t₀ + 1 under white noise + rate random walk (all t₀ from one tridiagonal solve), sd from the whole "
-        "fitted model; " + _STUDENTIZED_REFERENCE + "; Bonferroni over the n − 1 positions and the axes"
+        "fitted model; " + _BOUNDED_REFERENCE + "; Bonferroni over the n − 1 positions and the axes"
     )
     enters_model = "a term h · 1[t ≥ t₀] added to the bias, for up to 5 jumps"
     removal = "each jump at the maximum |z|, its height by generalised least squares; subtracted; repeated"

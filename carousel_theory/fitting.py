@@ -73,7 +73,6 @@ __all__ = [
     "fit_noise_model",
     "fit_observed",
     "fit_recording",
-    "generalized_least_squares",
     "nested_test",
     "observe_allan",
     "yule_walker",
@@ -431,7 +430,7 @@ def _fixed_column(name: str, sizes: tuple[int, ...], ar: tuple[float, ...], samp
     return column
 
 
-def generalized_least_squares(
+def _generalized_least_squares(
     design: np.ndarray, observed: np.ndarray, cholesky: np.ndarray
 ) -> tuple[np.ndarray, float, np.ndarray]:
     """Non-negative GLS with C = LLᵀ: (θ, objective, whitened design)."""
@@ -499,7 +498,7 @@ def _profile_d(problem: _Problem, cholesky: np.ndarray, d: float) -> float:
 
     def objective(order: float) -> float:
         design = _design(problem, order)
-        return generalized_least_squares(design, problem.observed, cholesky)[1]
+        return _generalized_least_squares(design, problem.observed, cholesky)[1]
 
     return float(minimize_scalar(objective, bounds=(0.02, 0.98), method="bounded", options={"xatol": 1e-4}).x)
 
@@ -518,7 +517,7 @@ def _solve(
         cholesky = np.linalg.cholesky(covariance)
         d = _profile_d(problem, cholesky, d)
         design = _design(problem, d)
-        theta, chi_square, _ = generalized_least_squares(design, problem.observed, cholesky)
+        theta, chi_square, _ = _generalized_least_squares(design, problem.observed, cholesky)
         if iteration == iterations or fixed_covariance is not None or not np.any(theta > 0):
             break
         model = _model_with(

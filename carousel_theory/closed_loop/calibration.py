@@ -63,12 +63,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from carousel_theory.closed_loop.residual_model import (
-    FittedNoise,
-    ResidualFit,
-    chi_square_z,
-    simulate_block_sums,
-)
+from carousel_theory.closed_loop.residual_model import ResidualFit, chi_square_z, simulate_block_sums
 
 __all__ = [
     "BOOTSTRAP_SEED",
@@ -77,7 +72,6 @@ __all__ = [
     "FLICKER_STREAM",
     "LONG_TAU_TERMS",
     "MISFIT_STREAM",
-    "TREND_STREAM",
     "AllanVarianceSampler",
     "MisfitTest",
     "bootstrap_generator",
@@ -193,7 +187,7 @@ def _long_statistic(parts: dict[str, _LongTau], observed: dict[str, np.ndarray])
 
 
 #: Stream numbers of the loop's Monte Carlo tests (the second word of their generators' seeds).
-MISFIT_STREAM, FLICKER_STREAM, TREND_STREAM = 0, 1, 2
+MISFIT_STREAM, FLICKER_STREAM = 0, 1
 
 
 def bootstrap_generator(stream: int, observed: list[np.ndarray]) -> np.random.Generator:
@@ -245,22 +239,19 @@ def _bootstrap_p(
 
 @dataclass(frozen=True)
 class AllanVarianceSampler:
-    """Draws of the octave non-overlapping Allan variance of one axis at ``sizes`` from the model ``noise``.
+    """Draws of the octave non-overlapping Allan variance of one axis at the τ of ``fit``, from its model.
 
     The long τ (at most LONG_TAU_TERMS differences, from index ``first`` on) come from block sums of the
-    model drawn exactly (:func:`~carousel_theory.closed_loop.residual_model.simulate_block_sums`, as in
-    the final misfit test), through the same estimator. The short τ, each a mean of more than
+    fitted model drawn exactly (:func:`~carousel_theory.closed_loop.residual_model.simulate_block_sums`,
+    as in the final misfit test), through the same estimator. The short τ, each a mean of more than
     LONG_TAU_TERMS squared differences, are drawn Gaussian given the long ones: mean
-    μ_S + C_SL C_LL⁻¹ (y_L − μ_L) and covariance C_SS − C_SL C_LL⁻¹ C_LS, with μ the model's curve and C
-    a model-based covariance across τ (the fit's), so that the pair has the model's first and second
-    moments (the skewness of a mean of N > 2000 squared Gaussian differences, ≤ √(8/N) ≈ 0.06, is left
-    out). A whole record is never simulated: the cost is O(length / block) per draw (O(length log length)
-    with a 1/f term, which is drawn sample by sample).
+    μ_S + C_SL C_LL⁻¹ (y_L − μ_L) and covariance C_SS − C_SL C_LL⁻¹ C_LS, with μ the fitted curve and C the
+    fit's model-based covariance across τ, so that the pair has the model's first and second moments
+    (the skewness of a mean of N > 2000 squared Gaussian differences, ≤ √(8/N) ≈ 0.06, is left out).
+    A whole record is never simulated: the cost is O(length / block) per draw.
     """
 
-    noise: FittedNoise
-    sizes: np.ndarray
-    curve: np.ndarray
+    fit: ResidualFit
     length: int
     first: int
     regression: np.ndarray
@@ -268,35 +259,26 @@ class AllanVarianceSampler:
 
     @classmethod
     def from_fit(cls, fit: ResidualFit, length: int) -> AllanVarianceSampler:
-        """Draws from the fitted model of ``fit`` at its τ, with its covariance across τ."""
-        return cls.from_model(fit.noise, fit, length)
-
-    @classmethod
-    def from_model(cls, noise: FittedNoise, fit: ResidualFit, length: int) -> AllanVarianceSampler:
-        """Draws from ``noise`` at the τ of ``fit``, the short τ with the covariance across τ of ``fit``."""
         first = long_tau_start(fit, length)
-        curve = noise.model.allan_variance(fit.sizes)
         covariance = np.asarray(fit.result.tau_covariance, dtype=np.float64)
         short, long = slice(0, first), slice(first, len(fit.sizes))
         if first in (0, len(fit.sizes)):
-            factor: np.ndarray = np.linalg.cholesky(covariance[short, short]) if first else np.zeros((0, 0))
-            regression: np.ndarray = np.zeros((first, len(fit.sizes) - first))
-            return cls(noise, fit.sizes, curve, length, first, regression, factor)
+            factor = np.linalg.cholesky(covariance[short, short]) if first else np.zeros((0, 0))
+            return cls(fit, length, first, np.zeros((first, len(fit.sizes) - first)), factor)
         regression = np.linalg.solve(covariance[long, long], covariance[long, short]).T
         residual = covariance[short, short] - regression @ covariance[long, short]
-        factor = np.linalg.cholesky(0.5 * (residual + residual.T))
-        return cls(noise, fit.sizes, curve, length, first, regression, factor)
+        return cls(fit, length, first, regression, np.linalg.cholesky(0.5 * (residual + residual.T)))
 
     def draw(self, rng: np.random.Generator) -> np.ndarray:
-        first, levels = self.first, len(self.sizes)
+        fit, first = self.fit, self.first
         long = np.empty(0)
-        if first < levels:
-            block = int(self.sizes[first])
-            sums = simulate_block_sums(self.noise, self.length, block, rng)
-            long = octave_allan(sums, levels - first, block)
-        short = self.curve[:first] + self.short_factor @ rng.standard_normal(first)
+        if first < len(fit.sizes):
+            block = int(fit.sizes[first])
+            sums = simulate_block_sums(fit.noise, self.length, block, rng)
+            long = octave_allan(sums, len(fit.sizes) - first, block)
+        short = fit.model[:first] + self.short_factor @ rng.standard_normal(first)
         if len(long):
-            short = short + self.regression @ (long - self.curve[first:])
+            short = short + self.regression @ (long - fit.model[first:])
         return np.concatenate((short, long))
 
 

@@ -197,15 +197,6 @@ def _iterate(
     return Step(iteration, current.headline, decision, rate, detections, tuple(trials)), None
 
 
-def _flicker_entered_jointly(step: Step, current: Evaluation, candidate: Evaluation) -> bool:
-    """A 1/f term entered the model with the added effect (a warm-up fitted jointly with it) while the
-    1/f detector was itself significant in this iteration: the 1/f noise is named too (at the
-    iteration's rate, as if it had been added on its own)."""
-    new_term = candidate.view.spec.terms.flicker and not current.view.spec.terms.flicker
-    evidence = any(d.effect == "flicker" and d.significant for d in step.detections)
-    return bool(new_term and evidence)
-
-
 def _run_iterations(loop: LoopInput, first: Evaluation) -> _Outcome:
     steps: list[Step] = []
     current, effects, kept = first, list[str](), set[str]()
@@ -219,9 +210,6 @@ def _run_iterations(loop: LoopInput, first: Evaluation) -> _Outcome:
             if added is not None:
                 effects.append(added.effect)
                 kept.add(added.effect)
-        if _flicker_entered_jointly(step, current, candidate) and "flicker" not in kept:
-            effects.append("flicker")
-            kept.add("flicker")
         current = candidate
     # The iteration budget ran out: whatever is still significant is unexplained.
     return _Outcome(steps, current, effects, bool(_significant(current, kept)))

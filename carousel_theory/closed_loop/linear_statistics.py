@@ -29,7 +29,6 @@ from carousel_theory.closed_loop.residual_model import (
     statistic_variance,
     statistic_variance_error,
 )
-from carousel_theory.closed_loop.studentized import StudentizedReference, studentized_reference
 from carousel_theory.closed_loop.view import ResidualView
 
 __all__ = [
@@ -119,15 +118,16 @@ def step_scan(view: ResidualView, axis: str) -> StepScan:
     return StepScan(u, weights, float(solved[len(u) // 2]))
 
 
-def refit(view: ResidualView, axis: str, signal: np.ndarray, terms: ModelTerms | None = None) -> ResidualFit:
-    """The axis's residual minus ``signal`` refitted (the view's terms, or ``terms``), with the same
-    Allan-variance weights (covariance across τ) as the view's fit."""
-    return fit_residual_model(
+def refit(view: ResidualView, axis: str, signal: np.ndarray, terms: ModelTerms | None = None) -> FittedNoise:
+    """The noise model of the axis refitted on its residual minus ``signal`` (the view's terms, or
+    ``terms``), with the same Allan-variance weights as the view's fit."""
+    fit = fit_residual_model(
         view.cleaned[axis] - signal,
         view.sample_rate,
         view.spec.terms if terms is None else terms,
         reference=view.fits[axis],
     )
+    return fit.noise
 
 
 def fit_with_terms(view: ResidualView, axis: str, terms: ModelTerms) -> ResidualFit:
@@ -188,35 +188,15 @@ def ranking_noise(view: ResidualView, axis: str) -> FittedNoise:
 @dataclass(frozen=True)
 class RegressorTest:
     """A regressor's GLS statistic L = Σ w_t e_t in the residual: ``z`` = L/√V̂ under the fitted model (the
-    ranking value), the amplitude, L, its variance with that variance's delta-method standard error
-    (:class:`~carousel_theory.closed_loop.residual_model.StatisticVariance`, reported), the bootstrap
-    reference of z (:class:`~carousel_theory.closed_loop.studentized.StudentizedReference`; both None
-    when only ranked), and the p-value of a competing 1/f term on the residual without the regressor
-    (1 when none was tested)."""
+    ranking value), the amplitude, L, its variance and that variance's standard error
+    (:class:`~carousel_theory.closed_loop.residual_model.StatisticVariance`, None when only ranked), and
+    the p-value of a competing 1/f term on the residual without the regressor (1 when none was tested)."""
 
     z: float
     amplitude: float
     projection: float = 0.0
     spread: StatisticVariance | None = None
-    reference: StudentizedReference | None = None
     competing_p: float = 1.0
-
-
-def _joint_noise(
-    view: ResidualView, axis: str, regressor: np.ndarray, amplitude: float, refit_terms: ModelTerms
-) -> tuple[FittedNoise, ResidualFit, float]:
-    """(noise, its fit, competing p) of the joint refit of :func:`regressor_test`: the residual minus the
-    fitted regressor refitted with ``refit_terms``, each variance held above the floor described there."""
-    signal = regressor - regressor.mean()
-    signal *= amplitude
-    terms, competing_p = _competing_terms(view, axis, signal, refit_terms)
-    refitted = refit(view, axis, signal, terms)
-    del signal  # not held through the variance below, the peak of the joint refit
-    # The floor comes from the null fit with the same stochastic terms: without its 1/f term the
-    # null fit's walk holds the 1/f power too, and a floor from it would count that power twice.
-    noise = view.fits[axis].noise
-    floor = fit_with_terms(view, axis, terms).noise if terms != view.spec.terms else noise
-    return bounded_noise(floor, refitted.noise, keep_flicker_floor=not terms.flicker), refitted, competing_p
 
 
 def regressor_test(
@@ -228,10 +208,10 @@ def regressor_test(
     refit_terms: ModelTerms | None = None,
     ranking: FittedNoise | None = None,
 ) -> RegressorTest:
-    """The GLS statistic Σ w_t e_t of ``regressor``, its z under the fitted model and its reference.
+    """The GLS statistic Σ w_t e_t of ``regressor``, its z under the fitted model and its variance.
 
-    ``quick`` ranks points of a scan (no refit, no reference; under ``ranking`` when given, else under
-    the view's fit without its 1/f term). With ``refit_terms`` the noise model is
+    ``quick`` ranks points of a scan (no refit; under ``ranking`` when given, else under the view's fit
+    without its 1/f term). With ``refit_terms`` the noise model is
     refitted jointly with the regressor (a Wald test under the alternative) with those stochastic terms:
     a competing term that could absorb the regressor (1/f noise under a warm-up) is fitted on the
     residual *without* the regressor, so it cannot hide it; a 1/f term the model lacks enters only when
@@ -239,16 +219,14 @@ def regressor_test(
     2-standard-error limit for the walk of the null fit with the same terms (a smooth regressor absorbs
     a stretch of the random walk, and σ_q² → 0 would make the test anticonservative; a null fit without
     the 1/f term would count the 1/f power twice, once in its walk). Without ``refit_terms``: the view's
-    fit. The reference of z is the parametric bootstrap of
-    :func:`~carousel_theory.closed_loop.studentized.studentized_reference`, its variances refitted as
-    the joint refit fitted them.
+    fit.
     """
     weights = gls_weights(view, axis, regressor)
     information = float(np.dot(weights, regressor))
     if information <= 0.0:
         return RegressorTest(0.0, 0.0)
     amplitude = float(np.dot(weights, view.residuals[axis])) / information
-    noise, fit = view.fits[axis].noise, view.fits[axis]
+    noise = view.fits[axis].noise
     if quick:
         if ranking is None:
             variance = statistic_variance(noise, weights, include_flicker=False)
@@ -258,11 +236,17 @@ def regressor_test(
     competing_p = 1.0
     if refit_terms is not None:
         del weights  # made anew under the refitted noise; one record-length array less meanwhile
-        noise, fit, competing_p = _joint_noise(view, axis, regressor, amplitude, refit_terms)
+        signal = regressor - regressor.mean()
+        signal *= amplitude
+        terms, competing_p = _competing_terms(view, axis, signal, refit_terms)
+        refitted = refit(view, axis, signal, terms)
+        del signal  # not held through the variance below, the peak of the joint refit
+        # The floor comes from the null fit with the same stochastic terms: without its 1/f term the
+        # null fit's walk holds the 1/f power too, and a floor from it would count that power twice.
+        floor = fit_with_terms(view, axis, terms).noise if terms != view.spec.terms else noise
+        noise = bounded_noise(floor, refitted, keep_flicker_floor=not terms.flicker)
         weights = gls_weights(view, axis, regressor, noise)
     spread = statistic_variance_error(noise, weights)
     projection = float(np.dot(weights, view.residuals[axis]))
-    subtracted = regressor if refit_terms is not None else None
-    reference = studentized_reference(noise, fit, len(view.time), weights, projection, subtracted)
-    z = projection / math.sqrt(max(reference.variance, 1e-300))
-    return RegressorTest(z, amplitude, projection, spread, reference, competing_p)
+    z = projection / math.sqrt(max(spread.variance, 1e-300))
+    return RegressorTest(z, amplitude, projection, spread, competing_p)

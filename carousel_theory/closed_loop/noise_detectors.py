@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize, stats
+from scipy.linalg import solve_triangular
 
 from carousel_theory.closed_loop.calibration import (
     FLICKER_STREAM,
@@ -25,7 +26,6 @@ from carousel_theory.closed_loop.residual_model import (
 )
 from carousel_theory.closed_loop.signal_detectors import residual_periodogram
 from carousel_theory.closed_loop.view import FittedEffect, ResidualView
-from carousel_theory.fitting import generalized_least_squares
 from carousel_theory.noise_model import term_allan_variance
 
 __all__ = ["ColoredNoiseDetector", "FlickerDetector", "FlickerGoodnessOfFit", "NestedAllanStatistic"]
@@ -104,21 +104,24 @@ class ColoredNoiseDetector:
         return FittedEffect(self.name, {"maximum_order": self.maximum_order}, terms=terms)
 
 
-def _design(components: tuple[str, ...], sizes: np.ndarray, ar: tuple[float, ...]) -> np.ndarray:
-    """The GLS design of :func:`carousel_theory.fitting.fit_observed`: the exact Allan variance of each
-    term at unit variance."""
-    return np.column_stack(
-        [term_allan_variance(name, sizes, FLICKER_D, ar_coefficients=ar) for name in components]
-    )
+def _whitened_design(
+    components: tuple[str, ...], sizes: np.ndarray, ar: tuple[float, ...], cholesky: np.ndarray
+) -> np.ndarray:
+    """The GLS design of :func:`carousel_theory.fitting.fit_observed` (the exact Allan variance of each
+    term at unit variance), whitened by C = LLᵀ and with unit-norm columns (the fitter's NNLS scaling)."""
+    columns = [term_allan_variance(name, sizes, FLICKER_D, ar_coefficients=ar) for name in components]
+    whitened = solve_triangular(cholesky, np.column_stack(columns), lower=True)
+    norms = np.linalg.norm(whitened, axis=0)
+    return whitened / np.where(norms > 0, norms, 1.0)
 
 
 @dataclass(frozen=True)
 class NestedAllanStatistic:
     """T = max(0, χ²₀ − χ²₁) / max(1, χ²₁/ν) of the non-negative GLS fits of an Allan-variance vector
     without (χ²₀) and with (χ²₁, ν degrees of freedom) a 1/f term, both under one fixed covariance C
-    across τ, each by the fitter's own least-squares step: the statistic of :class:`FlickerDetector`,
-    cheap enough to recompute on every replicate. On the observed Allan variance it equals the Δχ² of
-    the loop's nested fits (:func:`~carousel_theory.closed_loop.linear_statistics.nested_chi_square`)."""
+    across τ: the statistic of :class:`FlickerDetector`, cheap enough to recompute on every replicate.
+    On the observed Allan variance it equals the Δχ² of the loop's nested fits
+    (:func:`~carousel_theory.closed_loop.linear_statistics.nested_chi_square`)."""
 
     cholesky: np.ndarray
     reduced: np.ndarray
@@ -131,13 +134,14 @@ class NestedAllanStatistic:
         ar = fit.noise.model.ar_coefficients
         cholesky = np.linalg.cholesky(np.asarray(fit.result.tau_covariance, dtype=np.float64))
         reduced = ("ar" if ar else "white", "rrw")
-        full = _design((*reduced, "flicker"), fit.sizes, ar)
+        full = _whitened_design((*reduced, "flicker"), fit.sizes, ar, cholesky)
         dof = max(len(fit.sizes) - 3, 1)
-        return cls(cholesky, _design(reduced, fit.sizes, ar), full, dof)
+        return cls(cholesky, _whitened_design(reduced, fit.sizes, ar, cholesky), full, dof)
 
     def __call__(self, allan: np.ndarray) -> float:
-        without = generalized_least_squares(self.reduced, allan, self.cholesky)[1]
-        with_flicker = generalized_least_squares(self.full, allan, self.cholesky)[1]
+        whitened = solve_triangular(self.cholesky, allan, lower=True)
+        without = optimize.nnls(self.reduced, whitened)[1] ** 2
+        with_flicker = optimize.nnls(self.full, whitened)[1] ** 2
         return nested_statistic(without, with_flicker, self.dof)
 
 

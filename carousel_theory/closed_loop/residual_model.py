@@ -22,10 +22,9 @@ import numpy as np
 from scipy import stats
 
 from carousel_theory import units
-from carousel_theory.closed_loop.flicker_blocks import flicker_block_sums
 from carousel_theory.fitting import FitOptions, FitResult, fit_observed, observe_allan, yule_walker
 from carousel_theory.noise_model import NoiseModel, ar_autocovariance, term_allan_variance
-from carousel_theory.processes import fractionally_integrate
+from carousel_theory.processes import sample_flicker
 from carousel_theory.propagation import repeated_weights_bin_variances, weighted_sum_variance
 
 __all__ = [
@@ -37,21 +36,18 @@ __all__ = [
     "allan_z_values",
     "bounded_noise",
     "chi_square_z",
-    "covariance_product",
     "describe_noise",
     "difference_covariance_bands",
     "fit_residual_model",
     "model_curve_error",
     "nested_statistic",
     "noise_growth",
-    "noise_variances",
     "ranking_statistic_variance",
     "revolution_bin_variance",
     "simulate_block_sums",
     "spectral_density",
     "statistic_variance",
     "statistic_variance_error",
-    "statistic_variance_units",
     "uniform_bin_variances",
 ]
 
@@ -266,68 +262,27 @@ class StatisticVariance:
         return self.standard_error / self.variance if self.variance > 0 else math.inf
 
 
-def statistic_variance_units(
-    noise: FittedNoise, weights: np.ndarray, *, flicker: bool = False
-) -> dict[str, float]:
-    """u_i(w), the variance of Σ w_t e_t per unit of each variance the tests use (VARIANCE_NAMES): the
-    short noise's long-run variance (Σw²), the walk (TIM 2014 eq. (2)) and, when the model has or fits
-    one (or ``flicker``), the 1/f term (eq. (3)); V(θ) = Σ_i θ_i u_i(w)."""
-    model = noise.model
-    units = {
-        "long_run_white_variance": float(np.dot(weights, weights)),
-        "rrw_variance": weighted_sum_variance(weights, "rrw"),
-    }
-    if flicker or model.flicker_variance or "flicker_variance" in noise.names:
-        units["flicker_variance"] = weighted_sum_variance(weights, "flicker", d=model.flicker_d)
-    return units
-
-
-def noise_variances(noise: FittedNoise) -> dict[str, float]:
-    """θ_i by the names of VARIANCE_NAMES: the short noise's long-run variance, the walk, the 1/f term."""
-    model = noise.model
-    return {
-        "long_run_white_variance": _long_run_variance(model),
-        "rrw_variance": float(model.rrw_variance),
-        "flicker_variance": float(model.flicker_variance),
-    }
-
-
 def statistic_variance_error(noise: FittedNoise, weights: np.ndarray) -> StatisticVariance:
     """Var(Σ w_t e_t) and its standard error.
 
-    The variance V = Σ_i θ_i u_i(w) (:func:`statistic_variance_units`, θ the fitted variances); its
-    standard error √(uᵀ Σ_θ u) by the delta method, Σ_θ the fitter's GLS covariance of the variances
-    (:class:`FittedNoise`; the white, walk and 1/f estimates are correlated through the Allan variance
-    they share, which the quadratic form keeps). The walk's share counts even at a fitted σ_q² of 0: its
-    standard error still says how large it could be. A variance without a covariance row counts as
-    uncertain by its own size. The loop's tests do not use this error (their null distribution is a
-    parametric bootstrap, :mod:`carousel_theory.closed_loop.studentized`); it is reported."""
-    unit_variances, values = statistic_variance_units(noise, weights), noise_variances(noise)
-    parts = {name: (values[name], unit) for name, unit in unit_variances.items()}
+    The variance V = Σ_i θ_i u_i(w) as :func:`statistic_variance` (θ the fitted variances, u_i the
+    variance of the statistic per unit of each); its standard error √(uᵀ Σ_θ u) by the delta method,
+    Σ_θ the fitter's GLS covariance of the variances (:class:`FittedNoise`; the white, walk and 1/f
+    estimates are correlated through the Allan variance they share, which the quadratic form keeps).
+    The walk's share counts even at a fitted σ_q² of 0: its standard error still says how large it could
+    be. A variance without a covariance row counts as uncertain by its own size."""
+    model = noise.model
+    parts = {"long_run_white_variance": (_long_run_variance(model), float(np.dot(weights, weights)))}
+    parts["rrw_variance"] = (model.rrw_variance, weighted_sum_variance(weights, "rrw"))
+    if model.flicker_variance or "flicker_variance" in noise.names:
+        flicker_unit = weighted_sum_variance(weights, "flicker", d=model.flicker_d)
+        parts["flicker_variance"] = (model.flicker_variance, flicker_unit)
     variance = sum(value * unit for value, unit in parts.values())
     rows = [i for i, name in enumerate(noise.names) if name in parts]
-    vector = np.array([parts[noise.names[i]][1] for i in rows])
-    spread = float(vector @ noise.covariance[np.ix_(rows, rows)] @ vector) if rows else 0.0
+    units = np.array([parts[noise.names[i]][1] for i in rows])
+    spread = float(units @ noise.covariance[np.ix_(rows, rows)] @ units) if rows else 0.0
     spread += sum((unit * value) ** 2 for name, (value, unit) in parts.items() if name not in noise.names)
     return StatisticVariance(variance, math.sqrt(max(spread, 0.0)))
-
-
-def covariance_product(noise: FittedNoise, weights: np.ndarray) -> np.ndarray:
-    """Σ w, Σ the covariance of the model's samples (bias left out), so that Cov(e, Σ w_t e_t) = Σ w.
-
-    Short noise: its long-run variance times w (exact for white; the loop's weights vary slowly on the
-    scale of the AR correlation). Walk (TIM 2014 eq. (2)), x = C q with C the lower-triangular matrix of
-    ones: σ_q² C Cᵀ w by a suffix sum and a prefix sum. 1/f (eq. (3)), x = Ψ ε with Ψ the lower-triangular
-    Toeplitz matrix of the ψ_j: σ_f² Ψ Ψᵀ w by two FFT convolutions. O(n log n)."""
-    model = noise.model
-    product = _long_run_variance(model) * weights
-    if model.rrw_variance:
-        suffix = np.cumsum(weights[::-1])[::-1]
-        product = product + model.rrw_variance * np.cumsum(suffix)
-    if model.flicker_variance:
-        transposed = fractionally_integrate(weights[::-1], model.flicker_d)[::-1]
-        product = product + model.flicker_variance * fractionally_integrate(transposed, model.flicker_d)
-    return product
 
 
 def bounded_noise(
@@ -489,9 +444,7 @@ def simulate_block_sums(noise: FittedNoise, length: int, block: int, rng: np.ran
     are correlated only through O(correlation length / b) edge terms). Rate random walk (TIM 2014 eq. (2)):
     block j's sum is b R_j + W_j with R_j the walk before the block, and the pair (I_j = Σ_k q_k,
     W_j = Σ_k (b − k + 1) q_k) of the block's increments Gaussian with Var I = b σ_q²,
-    Var W = σ_q² Σ_k k², Cov = σ_q² Σ_k k — exact. 1/f noise (eq. (3)): its block sums directly,
-    :func:`~carousel_theory.closed_loop.flicker_blocks.flicker_block_sums` (exact to a relative row
-    energy of 10⁻¹⁰, O(count log count))."""
+    Var W = σ_q² Σ_k k², Cov = σ_q² Σ_k k — exact. 1/f noise is simulated sample by sample."""
     model, count = noise.model, length // block
     total = rng.normal(0.0, math.sqrt(_long_run_variance(model) * block), count)
     if model.rrw_variance:
@@ -505,7 +458,8 @@ def simulate_block_sums(noise: FittedNoise, length: int, block: int, rng: np.ran
         before = np.concatenate(([0.0], np.cumsum(pairs[:-1, 0])))
         total += block * before + pairs[:, 1]
     if model.flicker_variance:
-        total += flicker_block_sums(model.flicker_variance, model.flicker_d, block, count, rng)
+        flicker = sample_flicker(count * block, rng=rng, d=model.flicker_d, variance=model.flicker_variance)
+        total += flicker.reshape(count, block).sum(axis=1)
     return total
 
 

@@ -1,10 +1,9 @@
 """Detectors of slow deterministic effects: a warm-up transient, a temperature-driven bias, bias steps.
 
 Each is a GLS regression statistic (:mod:`carousel_theory.closed_loop.linear_statistics`), exactly
-Gaussian under the model given the noise variances, studentized by the variance its fitted model gives
-and referred to a parametric bootstrap of that studentized statistic from the fitted model, the fitted
-variances redrawn and refitted per replicate (:mod:`carousel_theory.closed_loop.studentized`),
-Bonferroni over its scan and the axes.
+Gaussian under the model given the noise variances, referred to the normal distribution at an upper
+confidence bound of its variance with the bound's non-coverage added to the p-value (Berger & Boos 1994,
+:func:`~carousel_theory.closed_loop.detection.bounded_two_sided`), Bonferroni over its scan and the axes.
 The warm-up and temperature statistics are computed jointly with the stochastic term that could absorb
 them: the noise model is refitted on the residual without the regressor, with
 a 1/f term for the warm-up (a transient and 1/f noise share the low frequencies) and with the random walk
@@ -20,7 +19,14 @@ from typing import Any
 
 import numpy as np
 
-from carousel_theory.closed_loop.detection import Detection, threshold_two_sided, untestable
+from carousel_theory.closed_loop.detection import (
+    Detection,
+    bounded_standard_deviation,
+    bounded_threshold,
+    bounded_two_sided,
+    threshold_two_sided,
+    untestable,
+)
 from carousel_theory.closed_loop.linear_statistics import (
     COMPETING_TERM_LEVEL,
     RegressorTest,
@@ -31,8 +37,11 @@ from carousel_theory.closed_loop.linear_statistics import (
     regressor_test,
     step_scan,
 )
-from carousel_theory.closed_loop.residual_model import ModelTerms, StatisticVariance, statistic_variance_error
-from carousel_theory.closed_loop.studentized import StudentizedReference, studentized_reference
+from carousel_theory.closed_loop.residual_model import (
+    ModelTerms,
+    StatisticVariance,
+    statistic_variance_error,
+)
 from carousel_theory.closed_loop.view import FittedEffect, ResidualView
 
 __all__ = ["StepsDetector", "TemperatureDetector", "WarmupDetector"]
@@ -43,18 +52,16 @@ class _AxisResult:
     axis: str
     z: float
     log10_p: float
-    threshold: float
     details: dict[str, float]
 
 
-def _studentized(axis: str, result: RegressorTest, tests: int, alpha: float, details: dict) -> _AxisResult:
-    """The axis's result from a full :func:`regressor_test`: z, its bootstrap p-value and threshold."""
-    if result.reference is None or result.spread is None:
-        return _AxisResult(axis, 0.0, 0.0, math.inf, details)
-    reference = result.reference
-    extra = {"variance_relative_error": result.spread.relative_error, "dependence": reference.dependence}
-    log10_p = reference.log10_p(result.z, tests)
-    return _AxisResult(axis, result.z, log10_p, reference.threshold(alpha, tests), {**details, **extra})
+def _bounded(axis: str, result: RegressorTest, tests: int, alpha: float, details: dict) -> _AxisResult:
+    """The axis's result from a full :func:`regressor_test` (z and p at the variance's upper bound)."""
+    if result.spread is None:
+        return _AxisResult(axis, 0.0, 0.0, details)
+    spread = result.spread
+    z, log10_p = bounded_two_sided(result.projection, spread.variance, spread.standard_error, tests, alpha)
+    return _AxisResult(axis, z, log10_p, {**details, "variance_relative_error": spread.relative_error})
 
 
 def _best(results: list[_AxisResult], alpha: float) -> tuple[_AxisResult, tuple[str, ...]]:
@@ -97,7 +104,7 @@ class WarmupDetector:
             "amplitude": result.amplitude,
             "competing_flicker_p": result.competing_p,
         }
-        return _studentized(axis, result, tests, alpha, details)
+        return _bounded(axis, result, tests, alpha, details)
 
     def detect(self, view: ResidualView, alpha: float) -> Detection:
         tests = self.grid_size * len(view.axes)
@@ -105,8 +112,8 @@ class WarmupDetector:
         return Detection(
             self.name,
             abs(best.z),
-            "max abs z of an exponential transient (studentized, bootstrap reference)",
-            best.threshold,
+            "max abs z of an exponential transient (variance at its upper bound)",
+            bounded_threshold(alpha, tests),
             best.log10_p,
             bool(axes),
             axes,
@@ -146,7 +153,7 @@ class TemperatureDetector:
 
     name = "temperature"
     stochastic = False
-    statistic_name = "abs z of the temperature regression (studentized, bootstrap reference)"
+    statistic_name = "abs z of the temperature regression (variance at its upper bound)"
 
     def detect(self, view: ResidualView, alpha: float) -> Detection:
         tests = len(view.axes)
@@ -160,7 +167,7 @@ class TemperatureDetector:
         for axis in view.axes:
             result = regressor_test(view, axis, view.temperature, refit_terms=view.spec.terms)
             found = {"coefficient_rad_s_per_degC": result.amplitude}
-            results.append(_studentized(axis, result, tests, alpha, found))
+            results.append(_bounded(axis, result, tests, alpha, found))
         best, axes = _best(results, alpha)
         details: dict[str, Any] = {
             "axis": best.axis,
@@ -171,7 +178,7 @@ class TemperatureDetector:
             self.name,
             abs(best.z),
             self.statistic_name,
-            best.threshold,
+            bounded_threshold(alpha, tests),
             best.log10_p,
             bool(axes),
             axes,
@@ -194,13 +201,12 @@ class TemperatureDetector:
 @dataclass(frozen=True)
 class _Scan:
     """u_j, the GLS statistic of a step after block j; the variance of a step's statistic with its error;
-    the information of a step; the standard deviation √V̂ and the bootstrap reference of u/√V̂."""
+    the information of a step; and the standard deviation at the variance's upper bound."""
 
     statistics: np.ndarray
     spread: StatisticVariance
     information: float
     sd: float
-    reference: StudentizedReference
 
 
 class StepsDetector:
@@ -210,19 +216,14 @@ class StepsDetector:
     stochastic = False
     maximum_steps = 5
 
-    def _scan(self, view: ResidualView, axis: str) -> _Scan:
+    def _scan(self, view: ResidualView, axis: str, alpha: float) -> _Scan:
         """u of a step after every block under the fit (no refit: a refit without the largest increment
         of the random walk lowers σ_q² enough to make the scan's maximum anticonservative); the variance
-        of a step in the middle, and the bootstrap reference of its studentized statistic, which carries
-        the uncertainty of the fitted σ_q² and serves every position (the steps' variances differ only
-        by the walk's share near the ends)."""
+        of a step in the middle and its standard error carry the uncertainty of the fitted σ_q²."""
         scan = step_scan(view, axis)
-        fit = view.fits[axis]
-        spread = statistic_variance_error(fit.noise, scan.middle_weights)
-        middle = float(np.dot(scan.middle_weights, view.residuals[axis]))
-        reference = studentized_reference(fit.noise, fit, len(view.time), scan.middle_weights, middle)
-        sd = math.sqrt(max(reference.variance, 1e-300))
-        return _Scan(scan.statistics, spread, scan.information, sd, reference)
+        spread = statistic_variance_error(view.fits[axis].noise, scan.middle_weights)
+        sd = bounded_standard_deviation(spread.variance, spread.standard_error, alpha)
+        return _Scan(scan.statistics, spread, scan.information, sd)
 
     def _tests(self, view: ResidualView) -> int:
         return (len(view.time) // gls_block(view) - 1) * len(view.axes)
@@ -231,24 +232,23 @@ class StepsDetector:
         n, tests = len(view.time), self._tests(view)
         results = []
         for axis in view.axes:
-            scan = self._scan(view, axis)
+            scan = self._scan(view, axis, alpha)
             index = int(np.argmax(np.abs(scan.statistics)))
-            z = float(scan.statistics[index]) / scan.sd
+            u = float(scan.statistics[index])
+            z, log10_p = bounded_two_sided(u, scan.spread.variance, scan.spread.standard_error, tests, alpha)
             at = min((index + 1) * gls_block(view), n - 1)
             details = {
                 "time_s": float(view.time[at]),
-                "height": float(scan.statistics[index]) / scan.information,
+                "height": u / scan.information,
                 "variance_relative_error": scan.spread.relative_error,
-                "dependence": scan.reference.dependence,
             }
-            log10_p = scan.reference.log10_p(z, tests)
-            results.append(_AxisResult(axis, z, log10_p, scan.reference.threshold(alpha, tests), details))
+            results.append(_AxisResult(axis, z, log10_p, details))
         best, axes = _best(results, alpha)
         return Detection(
             self.name,
             abs(best.z),
-            "max abs z of a bias step (GLS, studentized, bootstrap reference)",
-            best.threshold,
+            "max abs z of a bias step (GLS, variance at its upper bound)",
+            bounded_threshold(alpha, tests),
             best.log10_p,
             bool(axes),
             axes,
@@ -278,8 +278,8 @@ class StepsDetector:
         """Each jump at the maximum |z|, its height by GLS, removed from the scan; up to 5 jumps."""
         signals, fitted = {}, {}
         for axis in view.axes:
-            scan = self._scan(view, axis)
-            threshold = scan.reference.threshold(alpha, self._tests(view))
+            scan = self._scan(view, axis, alpha)
+            threshold = bounded_threshold(alpha, self._tests(view))
             signals[axis], jumps = self._jumps(view, axis, threshold, scan)
             fitted[axis] = {"jumps": jumps}
         return FittedEffect(self.name, fitted, signals=signals)
