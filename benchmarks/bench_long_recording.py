@@ -15,27 +15,15 @@ are printed. The target is a peak below 4 GB.
 With ``--keep DIR`` the recordings stay in DIR, and a recording already there (written by an earlier run
 with the same ``--samples``; its length is checked) is used again instead of being written anew.
 
-Measured (2 shared cores, loaded by other work; wall times vary by ±50 %), 4.32·10⁷ samples × 3 axes:
-``loop`` 3.71 GB (NPZ) and 3.97 GB (CSV) peak, 762 s and 537 s, where it needed 5.44 GB and 6.15 GB
-before the non-overlapping τ-covariance was summed in one buffer per pair, the residuals were made on
-demand, the unanalysed columns were freed and the CSV reader stopped concatenating chunks; ``allan``
-and ``fit`` on the CSV 2.94 GB and 2.96 GB (31 s each; 3.73 GB before). At 4.32·10⁶ samples, the same
-run, old and new code side by side: ``loop`` NPZ 1.15 → 0.56 GB (80 → 69 s), CSV 1.41 → 0.85 GB
-(81 → 67 s). With the Hann periodogram formed in place and the 1/f lag sums reading the shared unit
-autocovariance, ``loop`` on the CSV peaks at 3.93 GB (251 s, a less loaded box).
+Measured with this script (2 shared cores, loaded by other work; wall times vary by ±50 %), 4.32·10⁷
+samples × 3 axes: ``loop`` NPZ 3.08 GB (204–242 s), CSV 3.31 GB (390 s); ``allan`` and ``fit`` NPZ 2.07 and
+2.07 GB, CSV 2.33 and 2.31 GB. The target is met with about 0.7 GB to spare.
 
-Measured stage by stage (peak RSS per function, 4.32·10⁷ samples, CSV), the loop holds 1.34 GB from its
-start (the interpreter, libraries and what the CSV reader left ≈ 0.37 GB, the time column and the two
-analysed axes 0.97 GB) and 1.78 GB at its end (the fitted models and the shared 1/f unit autocovariance of
-the record's length, 0.32 GB); the 3.93 GB peak was the spike detector's robust z (seven record-length
-temporaries beside the residual), then the sinusoid detector (3.29 GB: one axis's periodogram held while
-the next was formed), the warm-up detector (3.30 GB) and the colored-noise detector's FFT (2.98 GB). With
-the robust z formed in place (three temporaries), each periodogram formed in an array of its own instead
-of beside a copy of the residual, and the timing check of the reader holding one array of steps at a time
-(values bit for bit unchanged), the same 4.32·10⁷-sample recordings (``--keep``): ``loop`` NPZ 3.71 → 3.08
-GB (242 s), CSV 3.93 → 3.31 GB (390 s, a loaded box): the warm-up detector's 3.30 GB, which these changes
-do not touch, is the highest stage left; ``allan`` and ``fit`` NPZ 2.07 and 2.07 GB (20 s and 25 s), CSV
-2.33 and 2.31 GB (2.94 and 2.96 GB before; 56 s and 60 s).
+Where the loop's memory goes was found once with a resident-set probe around each stage (not part of this
+script; its figures cannot be rerun from here): the loop holds about 1.3 GB from its start (the interpreter
+and libraries, the time column and the two analysed axes, 0.32 GB each) and about 1.8 GB at its end (the
+fitted models and the shared 1/f unit autocovariance, 0.32 GB); its highest stage is the warm-up detector's
+refit (≈ 3.3 GB on the CSV).
 """
 
 from __future__ import annotations

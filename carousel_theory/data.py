@@ -163,13 +163,12 @@ def _grid_deviation(time: np.ndarray) -> float:
     return float(np.max(np.abs(distance, out=distance)))
 
 
-def _timing_note(time: np.ndarray, resolution: float) -> tuple[str | None, float]:
+def _timing_note(time: np.ndarray, steps: np.ndarray, resolution: float) -> tuple[str | None, float]:
     """(what is irregular about ``time``: a gap, uneven steps, or None; the timestamps' jitter in s).
 
-    ``time`` is strictly increasing from 0. The jitter is the largest distance from the uniform grid,
-    computed only when some step is uneven (0 otherwise).
+    ``time`` is strictly increasing from 0 and ``steps`` is ``np.diff(time)``. The jitter is the largest
+    distance from the uniform grid, computed only when some step is uneven (0 otherwise).
     """
-    steps = np.diff(time)
     nominal = float(np.median(steps))
     tolerance = UNIFORM_TOLERANCE * nominal + resolution
     gaps = np.flatnonzero(steps > GAP_FACTOR * nominal + resolution)
@@ -229,8 +228,8 @@ def _check_timing(
             f"t[{i + 1}]={float(time[i + 1])!r} s after the first ({bad.size} such steps)"
             + ("; --resample HZ averages repeated timestamps" if steps[i] == 0 else "")
         )
-    del steps  # a record-length array: _timing_note makes its own
-    note, jitter = _timing_note(time, resolution)
+    note, jitter = _timing_note(time, steps, resolution)
+    del steps
     if note is not None and irregular == "refuse":
         raise ValueError(f"{source}: {note} ({_resample_advice(time)})")
     if note is not None:

@@ -234,6 +234,15 @@ def _spectra(polynomials: np.ndarray, size: int) -> np.ndarray:
     return scipy_fft.rfft(polynomials, size, axis=1)
 
 
+def _stacked(transfer_matrix: np.ndarray, accumulated: np.ndarray) -> np.ndarray:
+    """[Mᵀ | N] coefficient by coefficient, zero-filled where N is shorter than M: (2, coefficients of M,
+    2 + columns), so that one FFT product carries the generator and the residual correction together."""
+    stacked = np.zeros((2, transfer_matrix.shape[2], 2 + accumulated.shape[2]))
+    stacked[:, :, :2] = transfer_matrix.transpose(0, 2, 1)
+    stacked[:, : accumulated.shape[1], 2:] = accumulated
+    return stacked
+
+
 def _carry(generator: np.ndarray, transfer_matrix: np.ndarray, accumulated: np.ndarray, start: int):
     """The generator [A, B] M and the correction [A, B] N on coefficients start … m − 1 (m the
     generator's length), in one FFT product: (m − start, 2) and (m − start, columns).
@@ -243,12 +252,8 @@ def _carry(generator: np.ndarray, transfer_matrix: np.ndarray, accumulated: np.n
     folds only coefficients ≥ S onto 0 … start − 1, so S = m leaves the wanted ones exact.
     """
     m = generator.shape[1]
-    degree = transfer_matrix.shape[2]
-    factor = np.zeros((2, degree, 2 + accumulated.shape[2]))
-    factor[:, :, :2] = transfer_matrix.transpose(0, 2, 1)
-    factor[:, : accumulated.shape[1], 2:] = accumulated
     size = scipy_fft.next_fast_len(m, real=True)
-    spectrum = _spectra(generator, size)[:, :, None] * _spectra(factor, size)
+    spectrum = _spectra(generator, size)[:, :, None] * _spectra(_stacked(transfer_matrix, accumulated), size)
     product = scipy_fft.irfft(spectrum.sum(axis=0), size, axis=0)[start:m]
     return product[:, :2], product[:, 2:]
 
@@ -284,9 +289,7 @@ def _solve_range(first, second, residual, whitened, transfer: bool):
 def _compose(left_m, left_n, right_m, right_n, m):
     """M = M_L M_R (degree ≤ m) and N = N_L + M_L N_R (degree ≤ m − 1), by one FFT product."""
     size = scipy_fft.next_fast_len(m + 1, real=True)
-    right = np.zeros((2, right_m.shape[2], 2 + right_n.shape[2]))
-    right[:, :, :2] = right_m.transpose(0, 2, 1)
-    right[:, : right_n.shape[1], 2:] = right_n
+    right = _stacked(right_m, right_n)
     product = np.einsum(
         "rjf,jfc->rfc", scipy_fft.rfft(left_m, size, axis=2), scipy_fft.rfft(right, size, axis=1)
     )
@@ -333,10 +336,7 @@ def conditional_forecast(
     )
     # One FFT product gives both: the means from N and the generator after n steps on the future
     # rows, [A₀, B₀] M_n with B₀ = σ_v (a constant).
-    columns = np.zeros((n + 1, 2 + accumulated.shape[2]))
-    columns[:, :2] = polynomials[0].T
-    columns[:n, 2:] = accumulated[0]
-    products = _convolve_columns(driving, columns, n, total)
+    products = _convolve_columns(driving, _stacked(polynomials, accumulated)[0], n, total)
     generator, mean = products[:, :2], products[:, 2:]
     generator[0] += math.sqrt(sigma2_v) * polynomials[1, :, n]
     variance = np.cumsum((generator**2).sum(axis=1)) - sigma2_v

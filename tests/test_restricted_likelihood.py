@@ -203,3 +203,29 @@ def test_the_cubic_is_not_used_where_the_values_differ_by_rounding_only():
 
     flat = [(t, 13279.0 + 1e-10 * t**2) for t in (7.0, 7.1, 7.2, 7.3)]
     assert _cubic_vertex(flat, 7.1) is None
+
+
+@pytest.mark.parametrize("cubic", [1e-9, 1e-14, 1e-15])
+def test_the_cubic_step_keeps_its_digits_when_the_cubic_term_is_small(cubic):
+    # f(t) = (t − 0.3)² + c t³: near a smooth maximiser the likelihood is nearly quadratic, and the
+    # textbook root (−q + √D)/(3c) cancels; the step must still be the local minimum, here checked
+    # against the root of f'(t) = 3c t² + 2t − 0.6 at 50 digits.
+    import mpmath
+
+    from carousel_theory.restricted_likelihood import _cubic_vertex
+
+    points = [(t, (t - 0.3) ** 2 + cubic * t**3) for t in (0.0, 0.5, 1.0, -0.4)]
+    with mpmath.workdps(50):
+        c = mpmath.mpf(cubic)
+        exact = float((-1 + mpmath.sqrt(1 + mpmath.mpf("1.8") * c)) / (3 * c))
+    assert _cubic_vertex(points, 0.0) == pytest.approx(exact, rel=1e-9)
+
+
+def test_the_cubic_is_not_used_on_points_too_close_to_x():
+    from carousel_theory.restricted_likelihood import _cubic_vertex
+
+    # Values far apart (so only the spread of the abscissae can refuse): offsets of 1e-9 around x = 1.
+    close = [(1.0 + k * 1e-9, 1000.0 * k**2 + 50.0 * k**3) for k in (0, 1, -1, 2)]
+    assert _cubic_vertex(close, 1.0) is None
+    spread = [(1.0 + k * 1e-2, 1000.0 * k**2 + 50.0 * k**3) for k in (0, 1, -1, 2)]
+    assert _cubic_vertex(spread, 1.0) is not None

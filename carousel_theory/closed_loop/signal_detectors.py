@@ -76,13 +76,14 @@ def robust_z(x: np.ndarray, window: int = 15) -> np.ndarray:
     Scale in two passes: the central 99 % (a variance, so a coarse quantization lattice does not bias it
     the way it biases a median absolute deviation), then the standard deviation of everything within 4.5
     of those scales (the trimmed estimate alone is a few per cent low, which matters at the 5σ of a
-    Bonferroni threshold)."""
+    Bonferroni threshold). Computed in float64 whatever the input's type."""
     # Record-length temporaries are formed in place and freed once used: beside ``x`` a long record
     # holds at most three at a time (the same arithmetic, in the same order, as the plain expressions).
+    x = np.asarray(x, dtype=np.float64)
     half = window // 2
     shift = half // 2 + 1
     padded = np.pad(ndimage.median_filter(x, size=half, mode="nearest"), shift, mode="edge")
-    deviation = np.add(padded[: len(x)], padded[2 * shift :], dtype=np.float64)
+    deviation = np.add(padded[: len(x)], padded[2 * shift :])
     del padded
     deviation *= 0.5
     np.subtract(x, deviation, out=deviation)  # x − (left + right)/2
