@@ -735,11 +735,14 @@ def _gridded_gather(batch: PairBatch, chosen: np.ndarray) -> _Gathered:
     first = batch.block_ends[blocks, 0]
     length = (batch.block_ends[blocks, 1] - first + 1).astype(np.int64)
     shift = (pairs.positions[batch.block_owner[blocks]] - first[:, None]).astype(np.int64)
-    keys = ((shift + (1 << 40)) << 22) | length[:, None]  # (q − f, length) as one integer
+    # (q − f, length) as one integer, without collisions: both are below the record length, so the key
+    # stays below (2n)·(n + 1), far inside int64 for any recording that fits in memory.
+    least, radix = int(shift.min()), int(length.max()) + 1
+    keys = (shift - least) * radix + length[:, None]
     distinct, inverse = np.unique(keys.ravel(), return_inverse=True)
-    lengths, which = np.unique(distinct & ((1 << 22) - 1), return_inverse=True)
+    lengths, which = np.unique(distinct % radix, return_inverse=True)
     offsets = np.stack([_gauss_rule(int(size), points)[0] for size in lengths.tolist()])[which]
-    arguments = ((distinct >> 22) - (1 << 40)).astype(np.float64)[:, None] - offsets
+    arguments = (distinct // radix + least).astype(np.float64)[:, None] - offsets
     where = np.searchsorted(blocks, batch.node_block[chosen])
     index = inverse.reshape(keys.shape)[where] * points + (np.flatnonzero(chosen) % points)[:, None]
     return _Gathered(arguments.ravel(), index.astype(np.int32), pairs.weights[batch.node_owner[chosen]])

@@ -258,3 +258,28 @@ def test_gridded_node_values_equal_the_nine_term_sum(d, length, with_ar):
     reused = combined_sums(batch, [term_values(batch, other)], [1.0])
     fresh_batch = PairBatch.of(pairs, other.reach, True)
     assert reused == combined_sums(fresh_batch, [term_values(fresh_batch, other)], [1.0])
+
+
+@pytest.mark.parametrize("length", [20_000_000, 43_200_000])
+def test_gridded_node_values_hold_for_blocks_longer_than_four_million_lags(length):
+    # Gauss blocks grow with the distance from the support; at these lengths some exceed 2²² lags, and the
+    # node arguments must still be the nine-term sum's (not another block's, nor a singular rule).
+    model = _flicker_model(0.3, True)
+    sizes = [2**k for k in (0, 4, 12, 20, 22) if 3 * 2**k <= length]
+    terms = [length - 2 * m + 1 for m in sizes]
+    pairs = [(sizes[i], sizes[j], terms[i], terms[j]) for j in range(len(sizes)) for i in range(j + 1)]
+    lag_model = LagModel.of(model)
+    batch = PairBatch.of(pairs, lag_model.reach, True)
+    near = batch.node_parts[3]
+    blocks = batch.block_ends[:, 1] - batch.block_ends[:, 0] + 1
+    assert blocks.max() > 2**22
+    owner, nodes = batch.node_owner[near], batch.nodes[near]
+    got = batch.node_gather.values(lag_model)
+    direct = _nine_term_sum(batch.pairs, lag_model, owner, nodes)
+    arguments = batch.pairs.positions[owner] - nodes[:, None]
+    magnitude = np.einsum(
+        "ij,ij->i",
+        np.abs(lag_model.fourth_sum(arguments.ravel()).reshape(arguments.shape)),
+        np.abs(batch.pairs.weights[owner]),
+    )
+    assert np.all(np.abs(got - direct) <= 64 * np.finfo(float).eps * magnitude)
