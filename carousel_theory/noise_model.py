@@ -61,6 +61,7 @@ __all__ = [
     "WHITE_ALLAN_VARIANCE",
     "NoiseModel",
     "ar_autocovariance",
+    "ar_decay_lags",
     "ar_increment_reach",
     "increment_autocovariance",
     "spectral_density",
@@ -297,8 +298,7 @@ def ar_autocovariance(coefficients: tuple[float, ...], lags: int) -> np.ndarray:
     right = np.zeros(p + 1)
     right[0] = 1.0
     gamma[: p + 1] = linalg.solve(system, right)
-    rho = _slowest_root(coefficients)
-    reach = lags if rho == 0 else min(lags, p + 1 + int(math.log(AR_TRUNCATION) / math.log(rho)) + 1)
+    reach = min(lags, p + 2 + ar_decay_lags(coefficients)) if _slowest_root(coefficients) else lags
     for k in range(p + 1, reach):
         gamma[k] = float(np.dot(phi, gamma[k - p : k][::-1]))
     return _frozen(gamma[:lags])
@@ -309,9 +309,14 @@ def ar_increment_reach(coefficients: tuple[float, ...]) -> int:
     """The last lag at which γ_z of the AR term can be non-zero: :func:`ar_autocovariance` keeps γ(k) for
     k ≤ p + 1 + ⌊log AR_TRUNCATION / log ρ⌋ (zero beyond), and γ_z(k) = 2γ(k) − γ(k − 1) − γ(k + 1)
     reaches one lag further."""
-    rho = _slowest_root(tuple(float(c) for c in coefficients))
-    kept = len(coefficients) + 1 + (0 if rho == 0 else int(math.log(AR_TRUNCATION) / math.log(rho)))
-    return kept + 1
+    return len(coefficients) + 2 + ar_decay_lags(tuple(float(c) for c in coefficients))
+
+
+def ar_decay_lags(coefficients: tuple[float, ...]) -> int:
+    """⌊log AR_TRUNCATION / log ρ⌋: the lags after which ρ^k, the AR autocovariance's slowest decay, is
+    below ``AR_TRUNCATION`` (0 when ρ = 0)."""
+    rho = _slowest_root(coefficients)
+    return 0 if rho == 0 else int(math.log(AR_TRUNCATION) / math.log(rho))
 
 
 def _frozen(array: np.ndarray) -> np.ndarray:

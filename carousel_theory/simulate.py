@@ -29,7 +29,7 @@ import numpy as np
 from carousel_theory._validation import check_positive_integer, check_positive_real, check_real
 from carousel_theory.data import RESERVED_COLUMN_NAMES, Recording, recording_from_arrays
 from carousel_theory.effects import CATALOGUE, check_effect_parameters
-from carousel_theory.noise_model import AR_TRUNCATION, NoiseModel
+from carousel_theory.noise_model import NoiseModel, ar_decay_lags
 from carousel_theory.processes import sample_flicker, sample_rate_random_walk, sample_white
 from carousel_theory.units import (
     flicker_variance_from_bias_instability,
@@ -78,8 +78,7 @@ def sample_noise(model: NoiseModel, length: int, *, rng: np.random.Generator) ->
         y += float(model.sample_rate) * np.diff(angle)
     if model.ar_variance:
         phi = np.asarray(model.ar_coefficients, dtype=np.float64)
-        rho = float(np.max(np.abs(np.roots(np.concatenate(([1.0], -phi)))))) if len(phi) else 0.0
-        burn = int(np.log(AR_TRUNCATION) / np.log(rho)) + len(phi) if rho > 0 else 0
+        burn = ar_decay_lags(tuple(model.ar_coefficients)) + len(phi) if len(phi) else 0
         innovations = np.sqrt(float(model.ar_variance)) * rng.standard_normal(length + burn)
         y += lfilter([1.0], np.concatenate(([1.0], -phi)), innovations)[burn:]
     return y

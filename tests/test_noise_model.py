@@ -201,3 +201,20 @@ def test_reexported_from_fitting():
     from carousel_theory import fitting
 
     assert fitting.NoiseModel is NoiseModel
+
+
+@pytest.mark.parametrize("coefficients", [(0.5,), (0.99,), (0.999,), (1.2, -0.5), (0.3, 0.2, 0.1)])
+def test_ar_reach_is_where_the_slowest_root_falls_below_the_truncation(coefficients):
+    # ρ from a 50-digit polynomial root finder: ρ^k ≥ AR_TRUNCATION at k = decay, below at decay + 1.
+    with mpmath.workdps(50):
+        roots = mpmath.polyroots([1] + [-mpmath.mpf(c) for c in coefficients], maxsteps=200, extraprec=200)
+        rho = max(abs(r) for r in roots)
+        decay = int(mpmath.floor(mpmath.log(mpmath.mpf(noise_model.AR_TRUNCATION)) / mpmath.log(rho)))
+    assert noise_model.ar_decay_lags(coefficients) == decay
+    reach = noise_model.ar_increment_reach(coefficients)
+    assert reach == len(coefficients) + 2 + decay
+    # γ_z(k) = 2γ(k) − γ(k − 1) − γ(k + 1) is non-zero at the reach and exactly zero beyond it.
+    gamma = noise_model.ar_autocovariance(coefficients, reach + 4)
+    increments = 2 * gamma[1:-1] - gamma[:-2] - gamma[2:]  # lags 1 … reach + 2
+    assert increments[reach - 1] != 0.0
+    assert not np.any(increments[reach:])
