@@ -337,7 +337,7 @@ def conditional_forecast(
     # One FFT product gives both: the means from N and the generator after n steps on the future
     # rows, [A₀, B₀] M_n with B₀ = σ_v (a constant).
     products = _convolve_columns(driving, _stacked(polynomials, accumulated)[0], n, total)
-    generator, mean = products[:, :2], products[:, 2:]
+    generator, mean = products[:, :2], np.ascontiguousarray(products[:, 2:])  # mean: its own array
     generator[0] += math.sqrt(sigma2_v) * polynomials[1, :, n]
     variance = np.cumsum((generator**2).sum(axis=1)) - sigma2_v
     return ConditionalForecast(
