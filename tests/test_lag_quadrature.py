@@ -229,6 +229,21 @@ def test_fourth_sum_table_is_direct_evaluation(with_ar):
     np.testing.assert_array_equal(tabulated[1], direct[1])
 
 
+def _assert_node_values_are_nine_term_sums(batch, lag_model, near):
+    """The gathered values at the ``near`` Gauss nodes against the direct nine-term sum, to rounding of
+    the sum's magnitude."""
+    owner, nodes = batch.node_owner[near], batch.nodes[near]
+    got = batch.node_gather.values(lag_model)
+    direct = _nine_term_sum(batch.pairs, lag_model, owner, nodes)
+    arguments = batch.pairs.positions[owner] - nodes[:, None]
+    magnitude = np.einsum(
+        "ij,ij->i",
+        np.abs(lag_model.fourth_sum(arguments.ravel()).reshape(arguments.shape)),
+        np.abs(batch.pairs.weights[owner]),
+    )
+    assert np.all(np.abs(got - direct) <= 64 * np.finfo(float).eps * magnitude)
+
+
 @given(
     d=st.floats(min_value=0.02, max_value=0.98),
     length=st.integers(min_value=40_000, max_value=400_000),
@@ -243,16 +258,7 @@ def test_gridded_node_values_equal_the_nine_term_sum(d, length, with_ar):
     batch = PairBatch.of(pairs, lag_model.reach, True)
     near = batch.node_parts[3]
     assert np.any(near)
-    owner, nodes = batch.node_owner[near], batch.nodes[near]
-    got = batch.node_gather.values(lag_model)
-    direct = _nine_term_sum(batch.pairs, lag_model, owner, nodes)
-    arguments = batch.pairs.positions[owner] - nodes[:, None]
-    magnitude = np.einsum(
-        "ij,ij->i",
-        np.abs(lag_model.fourth_sum(arguments.ravel()).reshape(arguments.shape)),
-        np.abs(batch.pairs.weights[owner]),
-    )
-    assert np.all(np.abs(got - direct) <= 64 * np.finfo(float).eps * magnitude)
+    _assert_node_values_are_nine_term_sums(batch, lag_model, near)
     # The batch holds only the pairs' structure: reused for another model it gives a fresh batch's sums.
     other = LagModel.of(replace(model, flicker_d=1.0 - d, white_variance=2.0))
     reused = combined_sums(batch, [term_values(batch, other)], [1.0])
@@ -273,13 +279,4 @@ def test_gridded_node_values_hold_for_blocks_longer_than_four_million_lags(lengt
     near = batch.node_parts[3]
     blocks = batch.block_ends[:, 1] - batch.block_ends[:, 0] + 1
     assert blocks.max() > 2**22
-    owner, nodes = batch.node_owner[near], batch.nodes[near]
-    got = batch.node_gather.values(lag_model)
-    direct = _nine_term_sum(batch.pairs, lag_model, owner, nodes)
-    arguments = batch.pairs.positions[owner] - nodes[:, None]
-    magnitude = np.einsum(
-        "ij,ij->i",
-        np.abs(lag_model.fourth_sum(arguments.ravel()).reshape(arguments.shape)),
-        np.abs(batch.pairs.weights[owner]),
-    )
-    assert np.all(np.abs(got - direct) <= 64 * np.finfo(float).eps * magnitude)
+    _assert_node_values_are_nine_term_sums(batch, lag_model, near)
