@@ -524,7 +524,7 @@ def _solve(
             problem.sample_rate, 0.0, dict(zip(problem.components, theta, strict=True)), d, problem.ar
         )
         covariance = allan_estimate_covariance(
-            model, problem.sizes, problem.length, estimator=problem.estimator
+            model, problem.sizes, problem.length, estimator=problem.estimator, bound=False
         ).covariance
     return theta, d, covariance, chi_square
 

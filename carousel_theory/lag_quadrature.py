@@ -48,16 +48,22 @@ order of the row's own lags. At the exact lags H is needed only at integers: run
 give runs of arguments q − δ, merged across pairs (octave pairs share about thirty in thirty-one), H is
 evaluated once on their union and gathered by the run's offset. Everything is element by element and
 each row is reduced in its own order, so each pair's sum and bound are, bit for bit, those of the pair
-alone (:func:`counted_square_sum` is the batch of one).
+alone (:func:`counted_square_sum` is the batch of one). A lag's nine products w_q H(q − δ) are added
+in the ramps' order on every path (:func:`_ramp_sum`, and the sparse rows of the gathers below), so
+that its c does not depend on how its H was gathered.
 
 What does not depend on the model's variances or its d — the plans, the partition, the union of the
-exact lags' integer arguments and the index of each lag's nine arguments in it — is a
+exact lags' integer arguments and, for each lag, its nine weights at the columns of its arguments (a
+sparse matrix, so that c at every lag is one product with H at the distinct arguments) — is a
 :class:`PairBatch`, kept (:func:`pair_batch`) for the next covariance of the same pairs, so that a fit's
 iterations pay for it once. At the Gauss nodes H is likewise evaluated once per distinct argument: a
 node δ = f + o of a block starting at f has the arguments (q − f) − o, and blocks grown from breakpoints
 at equal distances share their rows (q − f, block length) — for octave pairs about one in nine is new.
+At the narrow pairs' integer lags γ_z is evaluated once on the integers the lags of all of them reach.
 :func:`term_values` (the values of one model, or of one term) and :func:`combined_sums` (Σ N c² and the
-bound for c = Σ_a θ_a c_a) are the two halves of :func:`counted_square_sums`.
+bound for c = Σ_a θ_a c_a) are the two halves of :func:`counted_square_sums`; a caller that needs the
+sums alone (a fit's weights) skips the bound (``bounds=False``: no far-tail remainders, no derivative
+bounds, the same sums).
 
 Rounding is not in the bound: where the support is wider, the nine-term sum of H loses about (m_j/m_i)²
 ulps; the tests hold the whole to the bound plus 1e-11 relative.
@@ -69,11 +75,11 @@ import bisect
 import functools
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy import special
+from scipy import sparse, special
 
 from carousel_theory.increment_sums import (
     finite_fourth_sum,
@@ -287,11 +293,17 @@ def _plan(m_i: int, m_j: int, K_i: int, K_j: int, reach: int) -> tuple[np.ndarra
     large = np.array([(f, n) for f, n in blocks if n > 2 * GAUSS_POINTS], dtype=np.int64).reshape(-1, 2)
     # The segments between cuts are disjoint and the blocks partition theirs, so the exact ranges are
     # disjoint: sorted by their first lag, they concatenate into the sorted lags.
-    ranges = [np.arange(first, last + 1, dtype=np.int64) for first, last in sorted(exact)]
-    lags = np.concatenate(ranges) if ranges else np.zeros(0, dtype=np.int64)
+    lags = _concatenated_ranges(np.array(sorted(exact), dtype=np.int64).reshape(-1, 2))
     lags.setflags(write=False)
     large.setflags(write=False)
     return lags, large
+
+
+def _concatenated_ranges(ranges: np.ndarray) -> np.ndarray:
+    """The integers first … last of each row (first, last) of ``ranges``, one range after the other."""
+    lengths = ranges[:, 1] - ranges[:, 0] + 1
+    starts = np.cumsum(lengths) - lengths  # where each range begins in the result
+    return np.repeat(ranges[:, 0] - starts, lengths) + np.arange(int(lengths.sum()), dtype=np.int64)
 
 
 # --- bounds and the far-tail series -----------------------------------------------------------------
@@ -366,24 +378,33 @@ class _Pairs:
 
 
 def _newton_series(
-    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, nearest: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """(c, bound on its error) from Σ_{r≤R} ν_r Δ^r γ_z(x₀) at the nearest arguments x₀ (far tail)."""
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, nearest: np.ndarray, bounds: bool = True
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """(c, bound on its error or None without ``bounds``) from Σ_{r≤R} ν_r Δ^r γ_z(x₀) at the nearest
+    arguments x₀ (far tail). Each step is formed in place in two buffers of the lags' length (the same
+    operations, in the same order, as the plain expressions)."""
     d, width = lag_model.flicker_d, pairs.width()
     rows = np.unique(owner)
-    table = np.zeros((len(pairs.m_i), _NEWTON_TERMS + 2))
+    table = np.zeros((_NEWTON_TERMS + 2, len(pairs.m_i)))  # ν_r / S^r of each row, one row of r per order
     for row in rows.tolist():
-        table[row] = _factorial_moments(int(pairs.m_i[row]), int(pairs.m_j[row]), float(width[row]))
-    moments, scale = table[owner], width[owner]
-    base = flicker_increment_difference(nearest, d)
-    total, term = np.zeros_like(nearest), base.copy()
+        table[:, row] = _factorial_moments(int(pairs.m_i[row]), int(pairs.m_j[row]), float(width[row]))
+    scale = width[owner]
+    shifted = nearest + 2.0 - d  # x₀ + 2 − d; the ratio's denominator is shifted + r
+    total, term = np.zeros_like(nearest), flicker_increment_difference(nearest, d)
+    product, denominator = np.empty_like(nearest), np.empty_like(nearest)
     for r in range(_NEWTON_TERMS + 1):
-        total += moments[:, r] * term
-        term = term * (2.0 * d - 3.0 - r) * scale / (nearest + 2.0 - d + r)
+        np.multiply(table[r][owner], term, out=product)
+        total += product
+        np.multiply(term, 2.0 * d - 3.0 - r, out=term)
+        np.multiply(term, scale, out=term)
+        np.divide(term, np.add(shifted, r, out=denominator), out=term)
+    total *= lag_model.flicker_variance
+    if not bounds:
+        return total, None
     order = _NEWTON_TERMS + 1
     difference = np.abs(flicker_increment_difference(nearest - order, d, order))
-    remainder = moments[:, order] * difference * scale**order
-    return lag_model.flicker_variance * total, lag_model.flicker_variance * remainder
+    remainder = table[order][owner] * difference * scale**order
+    return total, lag_model.flicker_variance * remainder
 
 
 # --- the sum --------------------------------------------------------------------------------------
@@ -444,30 +465,60 @@ def _partition_for(
 def _nine_term_sum(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray) -> np.ndarray:
     """c_ij(δ) = Σ_q w_q H(q − δ) at ``lags`` of the pairs ``owner``."""
     values = lag_model.fourth_sum(pairs.positions[owner] - lags[:, None])
-    return np.einsum("ij,ij->i", values, pairs.weights[owner])
+    weights = pairs.weights[owner]
+    return _ramp_sum((values[:, k], weights[:, k]) for k in range(values.shape[1]))
+
+
+def _ramp_sum(products: Iterator[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """Σ_q H_q w_q over a lag's ramps, added in the ramps' order (every path to c adds them in this one
+    order, so that a lag's value does not depend on how its H was gathered)."""
+    total: np.ndarray | None = None
+    for values, weights in products:
+        product = values * weights
+        total = product if total is None else np.add(total, product, out=total)
+    assert total is not None
+    return total
 
 
 @dataclass(frozen=True)
 class _Gathered:
-    """c = Σ_q w_q H(q − δ) at many lags as H at distinct ``arguments`` and, per lag, the ``index`` of its
-    nine arguments among them with the ``weights`` w_q (a structure of the pairs alone, kept by
-    :class:`PairBatch`); :meth:`values` is element by element the direct nine-term sum."""
+    """c = Σ_q w_q H(q − δ) at many lags as H at distinct ``arguments`` and a sparse ``matrix`` whose row of
+    each lag holds the weights w_q of its nine ramps at the columns of their arguments q − δ (a
+    structure of the pairs alone, kept by :class:`PairBatch`). :meth:`values` is the matrix times H at
+    the arguments: each row summed in the ramps' order, as :func:`_ramp_sum` sums the direct nine-term
+    products, so that each value is, bit for bit, the direct nine-term sum of the same H."""
 
     arguments: np.ndarray
-    index: np.ndarray
-    weights: np.ndarray
+    matrix: sparse.csr_array
 
     def values(self, lag_model: LagModel) -> np.ndarray:
-        if not len(self.index):
+        if not self.matrix.shape[0]:
             return np.zeros(0)
-        return np.einsum("ij,ij->i", lag_model.fourth_sum(self.arguments)[self.index], self.weights)
+        return np.asarray(self.matrix @ lag_model.fourth_sum(self.arguments))
+
+    @classmethod
+    def of(cls, arguments: np.ndarray, index: np.ndarray, weights: np.ndarray) -> _Gathered:
+        """From the arguments, each lag's nine indices into them (rows) and its pair's nine weights."""
+        return cls(arguments, _ramp_matrix(index, weights, len(arguments)))
+
+
+def _ramp_matrix(index: np.ndarray, weights: np.ndarray, columns: int) -> sparse.csr_array:
+    """The sparse matrix whose row r holds ``weights[r]`` at the columns ``index[r]``, in the ramps' order
+    (a row's products are added in the order of its entries)."""
+    rows, ramps = index.shape
+    pointers = np.arange(0, rows * ramps + 1, ramps, dtype=index.dtype)
+    return sparse.csr_array((weights.ravel(), index.ravel(), pointers), shape=(rows, columns))
+
+
+def _no_gather() -> _Gathered:
+    return _Gathered.of(np.zeros(0), np.zeros((0, 9), dtype=np.int32), np.zeros((0, 9)))
 
 
 def _tabulated_gather(pairs: _Pairs, owner: np.ndarray, lags: np.ndarray) -> _Gathered:
     """:class:`_Gathered` at integer ``lags`` sorted within each pair: runs of consecutive lags give runs
     of arguments q − δ, merged across pairs (octave pairs share most of them) into the distinct ones."""
     if not len(lags):
-        return _Gathered(np.zeros(0), np.zeros((0, 9), dtype=np.int64), np.zeros((0, 9)))
+        return _no_gather()
     breaks = np.flatnonzero((np.diff(lags) != 1) | (np.diff(owner) != 0))
     starts, stops = np.concatenate(([0], breaks + 1)), np.concatenate((breaks, [len(lags) - 1]))
     positions = pairs.positions[owner[starts]]
@@ -478,8 +529,12 @@ def _tabulated_gather(pairs: _Pairs, owner: np.ndarray, lags: np.ndarray) -> _Ga
     keys = np.repeat(first - offsets, lengths) + np.arange(int(lengths.sum()))
     run = np.searchsorted(first, lowest, side="right") - 1  # the merged run holding each argument run
     base = (offsets[run] - first[run] + positions.ravel()).reshape(positions.shape)  # q − δ ↦ base − δ
-    index = base[np.repeat(np.arange(len(starts)), stops - starts + 1)] - lags[:, None]
-    return _Gathered(keys.astype(np.float64), index.astype(np.int32), pairs.weights[owner])
+    rows = base.T.astype(np.int64)  # each ramp's base over the runs
+    runs, integral = np.repeat(np.arange(len(starts)), stops - starts + 1), lags.astype(np.int64)
+    index = np.empty((len(lags), len(rows)), dtype=np.int32)
+    for k, row in enumerate(rows):
+        np.subtract(row[runs], integral, out=index[:, k], casting="unsafe")
+    return _Gathered.of(keys.astype(np.float64), index, pairs.weights[owner])
 
 
 def _tabulated_nine_term_sum(
@@ -495,9 +550,17 @@ def _direct_values(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: 
     sum."""
     finite = replace(lag_model, flicker_variance=0.0)
     flicker = np.empty(len(lags))
+    integral = lags == np.rint(lags)
+    integers = None
+    if np.any(integral):  # γ_z once on 0 … the largest |δ + u| an integer lag reaches
+        reach = np.abs(lags[integral]) + 2.0 * np.maximum(pairs.m_i, pairs.m_j)[owner[integral]]
+        integers = flicker_increment_difference(
+            np.arange(int(reach.max()) + 1, dtype=np.float64), lag_model.flicker_d
+        )
     for row in np.unique(owner).tolist():
         mine = owner == row
-        flicker[mine] = _direct_flicker(int(pairs.m_i[row]), int(pairs.m_j[row]), lag_model, lags[mine])
+        m_i, m_j = int(pairs.m_i[row]), int(pairs.m_j[row])
+        flicker[mine] = _direct_flicker(m_i, m_j, lag_model, lags[mine], integers)
     return flicker + _nine_term_sum(pairs, finite, owner, lags)
 
 
@@ -524,17 +587,20 @@ def _parted_values(
     lags: np.ndarray,
     parts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
     near_values: np.ndarray | None,
+    bounds: bool = True,
 ) -> tuple[np.ndarray, np.ndarray]:
     """(c, bound on its error) by the partition ``parts`` of :func:`_partition`, the nine-term sums at its
-    near lags given."""
+    near lags given; without ``bounds`` the error is not formed (an empty array)."""
     nearest, far, direct, near = parts
-    values, errors = np.empty(len(lags)), np.zeros(len(lags))
+    values, errors = np.empty(len(lags)), np.zeros(len(lags) if bounds else 0)
     if np.any(direct):
         values[direct] = _direct_values(pairs, lag_model, owner[direct], lags[direct])
     if near_values is not None:
         values[near] = near_values
     if np.any(far):
-        values[far], errors[far] = _newton_series(pairs, lag_model, owner[far], nearest[far])
+        values[far], far_errors = _newton_series(pairs, lag_model, owner[far], nearest[far], bounds)
+        if far_errors is not None:
+            errors[far] = far_errors
     return values, errors
 
 
@@ -551,18 +617,24 @@ def _window(m_i: int, m_j: int) -> np.ndarray:
     return np.convolve(triangle_i[::-1], triangle_j)
 
 
-def _direct_flicker(m_i: int, m_j: int, lag_model: LagModel, lags: np.ndarray) -> np.ndarray:
+def _direct_flicker(
+    m_i: int, m_j: int, lag_model: LagModel, lags: np.ndarray, integers: np.ndarray | None = None
+) -> np.ndarray:
     """σ_w² Σ_u W(u) γ_z(δ + u) at integer lags or outside the support, γ_z(x) = C_d/rising(|x| + d − 1,
     3 − 2d) (even on the integers, analytic on either side of the support). At integer lags γ_z is
-    evaluated once on the integers the lags reach and correlated with W."""
+    evaluated once on the integers the lags reach and correlated with W; ``integers``, when given, holds
+    γ_z(0), γ_z(1), … out to every |x| these lags reach (the same values, shared by many pairs)."""
     d, window = lag_model.flicker_d, _window(m_i, m_j)
     result = np.empty(len(lags))
     integral = lags == np.rint(lags)
     if np.any(integral):
         points = lags[integral]
         first, last = int(points.min()), int(points.max())
-        arguments = np.abs(np.arange(first - 2 * m_i + 2, last + 2 * m_j - 1, dtype=np.float64))
-        gamma = flicker_increment_difference(arguments, d)
+        reached = np.arange(first - 2 * m_i + 2, last + 2 * m_j - 1)
+        if integers is None:
+            gamma = flicker_increment_difference(np.abs(reached.astype(np.float64)), d)
+        else:
+            gamma = integers[np.abs(reached)]
         result[integral] = np.correlate(gamma, window, "valid")[(points - first).astype(np.int64)]
     if not np.all(integral):
         offsets = np.arange(-(2 * m_i - 2), 2 * m_j - 1, dtype=np.float64)
@@ -629,8 +701,8 @@ def _chunked_values(
 class PairBatch:
     """The pairs of one covariance with all that does not depend on the model's variances or its 1/f
     order: the exact lags and the Gauss blocks of :func:`_plan` (for the finite terms' ``reach``), the
-    counts N there, and which of them the far-tail series takes (:func:`_partition`, where the finite
-    terms' c is exactly 0: every argument of their γ_z is beyond their reach)."""
+    counts N there, how c is taken at each (:func:`_partition`: the far-tail series where the finite
+    terms' c is exactly 0, every argument of their γ_z beyond their reach) and the gathers of H."""
 
     pairs: _Pairs
     reach: int
@@ -638,13 +710,11 @@ class PairBatch:
     lag_owner: np.ndarray
     lags: np.ndarray
     lag_counts: np.ndarray
-    far_lags: np.ndarray
     nodes: np.ndarray
     node_weights: np.ndarray
     node_block: np.ndarray
     node_owner: np.ndarray
     node_counts: np.ndarray
-    far_nodes: np.ndarray
     block_owner: np.ndarray
     block_ends: np.ndarray
     block_largest: np.ndarray
@@ -667,7 +737,7 @@ class PairBatch:
         return _partition_for(self.pairs, self.node_owner, self.nodes, self.reach, self.flicker)
 
     @functools.cached_property
-    def node_gather(self) -> _Gathered:
+    def node_gather(self) -> _Grid:
         """:func:`_gridded_gather` at the Gauss nodes taken by the nine-term sum."""
         return _gridded_gather(self, self.node_parts[3])
 
@@ -686,17 +756,17 @@ class PairBatch:
         node_owner = block_owner[block]
         largest = np.maximum(batch.count(block_owner, ends[:, 0]), batch.count(block_owner, ends[:, 1]))
         return cls(
-            batch, reach, flicker, owner, lags, batch.count(owner, lags),
-            _far(batch, owner, lags, reach, flicker), nodes, weights, block, node_owner,
-            weights * batch.count(node_owner, nodes), _far(batch, node_owner, nodes, reach, flicker),
-            block_owner, ends, largest, np.exp(log_norms),
+            batch, reach, flicker, owner, lags, batch.count(owner, lags), nodes, weights, block,
+            node_owner, weights * batch.count(node_owner, nodes), block_owner, ends, largest,
+            np.exp(log_norms),
         )  # fmt: skip
 
 
 @dataclass(frozen=True)
 class TermValues:
     """c of one term at a batch's exact lags and Gauss nodes, the bounds on the far-tail series' error
-    there, and the bound B on each block's derivative (both zero for a finite term)."""
+    there, and the bound B on each block's derivative (both zero for a finite term; empty when the values
+    were formed without bounds)."""
 
     lags: np.ndarray
     lag_errors: np.ndarray
@@ -705,33 +775,72 @@ class TermValues:
     derivative: np.ndarray
 
 
-def term_values(batch: PairBatch, lag_model: LagModel) -> TermValues:
+def term_values(batch: PairBatch, lag_model: LagModel, *, bounds: bool = True) -> TermValues:
     """:class:`TermValues` of ``lag_model`` (one term, or the whole model) on ``batch``: the values
-    :func:`counted_square_sums` sums, element by element."""
+    :func:`counted_square_sums` sums, element by element; without ``bounds`` the same values, no error
+    bounds (empty arrays)."""
     pairs = batch.pairs
     if lag_model.reach != batch.reach or bool(lag_model.flicker_variance) != batch.flicker:
         raise ValueError(
             f"lag_model.reach={lag_model.reach!r}: must be the batch's reach {batch.reach}, with 1/f"
         )
     values, errors = _parted_values(
-        pairs, lag_model, batch.lag_owner, batch.lags, batch.lag_parts, batch.lag_gather.values(lag_model)
+        pairs,
+        lag_model,
+        batch.lag_owner,
+        batch.lags,
+        batch.lag_parts,
+        batch.lag_gather.values(lag_model),
+        bounds,
     )
     node_values, node_errors = _parted_values(
-        pairs, lag_model, batch.node_owner, batch.nodes, batch.node_parts, batch.node_gather.values(lag_model)
+        pairs,
+        lag_model,
+        batch.node_owner,
+        batch.nodes,
+        batch.node_parts,
+        batch.node_gather.values(lag_model),
+        bounds,
     )
-    derivative = _derivative_bounds(pairs, lag_model, batch.block_owner, batch.block_ends)
+    derivative = (
+        _derivative_bounds(pairs, lag_model, batch.block_owner, batch.block_ends) if bounds else np.zeros(0)
+    )
     return TermValues(values, errors, node_values, node_errors, derivative)
 
 
-def _gridded_gather(batch: PairBatch, chosen: np.ndarray) -> _Gathered:
-    """:class:`_Gathered` at the ``chosen`` Gauss nodes. A node δ = f + o (f the block's first lag, o the
+@dataclass(frozen=True)
+class _Grid:
+    """c at chosen Gauss nodes from H at the distinct (q − f, block length) rows times the p offsets
+    (``arguments``, row after row): a sparse ``matrix`` gives each block holding a chosen node its nine
+    ramps' weights at the columns of their rows, so that matrix @ H (rows × p) is c at every node of those
+    blocks (each node's nine products added in the ramps' order, as at every lag), and ``take`` is each
+    chosen node's place among them."""
+
+    arguments: np.ndarray
+    matrix: sparse.csr_array
+    take: np.ndarray
+
+    def values(self, lag_model: LagModel) -> np.ndarray:
+        if not len(self.take):
+            return np.zeros(0)
+        table = lag_model.fourth_sum(self.arguments).reshape(-1, GAUSS_POINTS)
+        return np.asarray(self.matrix @ table).ravel()[self.take]
+
+
+def _gridded_gather(batch: PairBatch, chosen: np.ndarray) -> _Grid:
+    """:class:`_Grid` at the ``chosen`` Gauss nodes. A node δ = f + o (f the block's first lag, o the
     rule's offset) has the arguments q − δ = (q − f) − o; blocks of the same length share their offsets
     and, grown from breakpoints at the same distances, most of their q − f (octave pairs: about one
     (block, q) in nine is new), so H is needed only on the distinct (q − f, length) at the p offsets."""
     pairs, points = batch.pairs, GAUSS_POINTS
     if not np.any(chosen):
-        return _Gathered(np.zeros(0), np.zeros((0, 9), dtype=np.int64), np.zeros((0, 9)))
-    blocks = np.flatnonzero(np.bincount(batch.node_block[chosen], minlength=len(batch.block_owner)))
+        return _Grid(
+            np.zeros(0),
+            _ramp_matrix(np.zeros((0, 9), dtype=np.int32), np.zeros((0, 9)), 0),
+            np.zeros(0, dtype=np.int64),
+        )
+    holds = np.bincount(batch.node_block[chosen], minlength=len(batch.block_owner)) > 0
+    blocks = np.flatnonzero(holds)
     first = batch.block_ends[blocks, 0]
     length = (batch.block_ends[blocks, 1] - first + 1).astype(np.int64)
     shift = (pairs.positions[batch.block_owner[blocks]] - first[:, None]).astype(np.int64)
@@ -743,9 +852,10 @@ def _gridded_gather(batch: PairBatch, chosen: np.ndarray) -> _Gathered:
     lengths, which = np.unique(distinct % radix, return_inverse=True)
     offsets = np.stack([_gauss_rule(int(size), points)[0] for size in lengths.tolist()])[which]
     arguments = (distinct // radix + least).astype(np.float64)[:, None] - offsets
-    where = np.searchsorted(blocks, batch.node_block[chosen])
-    index = inverse.reshape(keys.shape)[where] * points + (np.flatnonzero(chosen) % points)[:, None]
-    return _Gathered(arguments.ravel(), index.astype(np.int32), pairs.weights[batch.node_owner[chosen]])
+    rows = inverse.reshape(keys.shape).astype(np.int32)  # each block's nine rows (q − f, length)
+    matrix = _ramp_matrix(rows, pairs.weights[batch.block_owner[blocks]], len(distinct))
+    where = (np.cumsum(holds) - 1)[batch.node_block[chosen]]  # each chosen node's block among ``blocks``
+    return _Grid(arguments.ravel(), matrix, where * points + np.flatnonzero(chosen) % points)
 
 
 def _combined(arrays: Sequence[np.ndarray], variances: Sequence[float]) -> np.ndarray:
@@ -758,49 +868,67 @@ def _combined(arrays: Sequence[np.ndarray], variances: Sequence[float]) -> np.nd
 
 
 def combined_sums(
-    batch: PairBatch, terms: Sequence[TermValues], variances: Sequence[float]
+    batch: PairBatch, terms: Sequence[TermValues], variances: Sequence[float], *, bounds: bool = True
 ) -> list[tuple[float, float]]:
     """(Σ_δ N c², proved bound on its error) of each pair for c = Σ_a θ_a c_a, θ = ``variances`` of the
-    ``terms`` (module text): the exact lags and the Gauss blocks of the combined values."""
+    ``terms`` (module text): the exact lags and the Gauss blocks of the combined values. Without
+    ``bounds`` (terms whose values were formed without them) the bound is NaN: not computed."""
     size = len(batch.pairs.m_i)
     values = _combined([t.lags for t in terms], variances)
-    errors = _combined([t.lag_errors for t in terms], variances)
-    counts = batch.lag_counts
-    total = np.bincount(batch.lag_owner, counts * (values * values), minlength=size)
-    bound = np.bincount(batch.lag_owner, counts * (errors * (2.0 * np.abs(values) + errors)), minlength=size)
+    total = np.bincount(batch.lag_owner, batch.lag_counts * (values * values), minlength=size)
+    bound = _lag_bound(batch, terms, variances, values) if bounds else np.full(size, np.nan)
     block_total: np.ndarray = np.zeros(size)
-    block_bound: np.ndarray = np.zeros(size)
     if len(batch.nodes):
         values = _combined([t.nodes for t in terms], variances)
-        errors = _combined([t.node_errors for t in terms], variances)
-        weighted, owner = batch.node_counts, batch.node_owner
-        block_total = np.bincount(owner, weighted * (values * values), minlength=size)
-        error_terms = weighted * (errors * (2.0 * np.abs(values) + errors))
-        block_bound = np.bincount(owner, error_terms, minlength=size)
-        derivative = _combined([t.derivative for t in terms], variances)
-        if len(derivative):
-            square_sums = np.bincount(
-                batch.node_block, batch.node_weights * values * values, minlength=len(batch.block_owner)
-            )
-            norms, largest = batch.block_norms, batch.block_largest
-            quadrature = derivative * largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
-            block_bound = block_bound + np.bincount(batch.block_owner, quadrature, minlength=size)
-    return list(zip((total + block_total).tolist(), (bound + block_bound).tolist(), strict=True))
+        block_total = np.bincount(batch.node_owner, batch.node_counts * (values * values), minlength=size)
+        if bounds:
+            bound = bound + _block_bound(batch, terms, variances, values)
+    return list(zip((total + block_total).tolist(), bound.tolist(), strict=True))
+
+
+def _lag_bound(
+    batch: PairBatch, terms: Sequence[TermValues], variances: Sequence[float], values: np.ndarray
+) -> np.ndarray:
+    """The far-tail series' bound Σ N e (2|c| + e) over each pair's exact lags."""
+    errors = _combined([t.lag_errors for t in terms], variances)
+    error_terms = batch.lag_counts * (errors * (2.0 * np.abs(values) + errors))
+    return np.bincount(batch.lag_owner, error_terms, minlength=len(batch.pairs.m_i))
+
+
+def _block_bound(
+    batch: PairBatch, terms: Sequence[TermValues], variances: Sequence[float], values: np.ndarray
+) -> np.ndarray:
+    """The Gauss blocks' bound of each pair: the far-tail series' at the nodes and the rule's (module
+    text)."""
+    size = len(batch.pairs.m_i)
+    errors = _combined([t.node_errors for t in terms], variances)
+    error_terms = batch.node_counts * (errors * (2.0 * np.abs(values) + errors))
+    block_bound = np.bincount(batch.node_owner, error_terms, minlength=size)
+    derivative = _combined([t.derivative for t in terms], variances)
+    if len(derivative):
+        square_sums = np.bincount(
+            batch.node_block, batch.node_weights * values * values, minlength=len(batch.block_owner)
+        )
+        norms, largest = batch.block_norms, batch.block_largest
+        quadrature = derivative * largest * (2.0 * np.sqrt(norms * square_sums) + derivative * norms)
+        block_bound = block_bound + np.bincount(batch.block_owner, quadrature, minlength=size)
+    return block_bound
 
 
 def counted_square_sums(
-    lag_model: LagModel, pairs: Sequence[tuple[int, int, int, int]]
+    lag_model: LagModel, pairs: Sequence[tuple[int, int, int, int]], *, bounds: bool = True
 ) -> list[tuple[float, float]]:
     """:func:`counted_square_sum` of every (m_i, m_j, K_i, K_j) in ``pairs``, all evaluated together (rows of
     :class:`_Pairs`), with H tabulated once on the union of the integer arguments the exact lags need.
     Every operation is element by element and each pair's sum is reduced in its own order, so each
-    value is, bit for bit, the one the pair alone gives."""
+    value is, bit for bit, the one the pair alone gives. Without ``bounds`` the same sums, each bound
+    NaN (not computed: the far-tail remainders and the blocks' derivative bounds are skipped)."""
     if not pairs:
         return []
     batch = pair_batch(
         tuple(tuple(pair) for pair in pairs), lag_model.reach, bool(lag_model.flicker_variance)
     )
-    return combined_sums(batch, [term_values(batch, lag_model)], [1.0])
+    return combined_sums(batch, [term_values(batch, lag_model, bounds=bounds)], [1.0], bounds=bounds)
 
 
 @functools.lru_cache(maxsize=2)

@@ -106,7 +106,8 @@ class TauCovariance:
     edf : ndarray
         Equivalent degrees of freedom 2 σ_A⁴ / Var σ̂².
     truncation_bound : ndarray
-        Bound on the part of each entry left out by a truncated 1/f sum (0 where exact).
+        Bound on the part of each entry left out by a truncated 1/f sum (0 where exact; NaN where the lag
+        quadrature's bound was not asked for, ``bound=False``).
     estimator : str
         "overlapping" or "non-overlapping".
     """
@@ -408,13 +409,20 @@ def _engine(
 
 
 def _pair_sums(
-    model: NoiseModel, sizes: np.ndarray, terms: np.ndarray, length: int, estimator: str, pairs: list
+    model: NoiseModel,
+    sizes: np.ndarray,
+    terms: np.ndarray,
+    length: int,
+    estimator: str,
+    pairs: list,
+    bound: bool = True,
 ) -> list[tuple[float, float]]:
-    """(Σ N c², error bound) of each (i, j) in ``pairs``; the lag quadrature takes them all at once."""
+    """(Σ N c², error bound) of each (i, j) in ``pairs``; the lag quadrature takes them all at once (its
+    bound NaN without ``bound``)."""
     arguments = [(int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])) for i, j in pairs]
     engine = _engine(model, arguments, length, estimator)
     if isinstance(engine, LagModel):
-        return counted_square_sums(engine, arguments)
+        return counted_square_sums(engine, arguments, bounds=bound)
     return [_pair_sum(model, engine, *pair, estimator) for pair in arguments]
 
 
@@ -436,23 +444,25 @@ def _assembled(
 
 
 def _covariance_matrix(
-    model: NoiseModel, sizes: np.ndarray, length: int, estimator: str
+    model: NoiseModel, sizes: np.ndarray, length: int, estimator: str, bound: bool
 ) -> tuple[np.ndarray, np.ndarray]:
     """(Σ N c² / scale, error bound / scale) for every pair of non-decreasing ``sizes``."""
     terms = _terms_count(sizes, length, estimator)
     pairs = _upper_pairs(len(sizes))
-    return _assembled(sizes, terms, _pair_sums(model, sizes, terms, length, estimator, pairs))
+    return _assembled(sizes, terms, _pair_sums(model, sizes, terms, length, estimator, pairs, bound))
 
 
 def allan_estimate_covariance(
-    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping"
+    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping", bound: bool = True
 ) -> TauCovariance:
     """Covariance of the Allan variance estimates at m = ``tau_samples`` in a record of ``length`` samples.
 
     Exact in closed form for white, rate random walk and quantization with the overlapping estimator; 1/f
     and AR summed over every lag of a short record, by the lag quadrature (proved bound) of a long one,
     and by a finite lag sum with the 1/f tail bounded for the non-overlapping estimator (module text).
-    For the non-overlapping estimator every m must divide the larger ones.
+    For the non-overlapping estimator every m must divide the larger ones. ``bound=False`` skips the lag
+    quadrature's error bound (the same covariance; its ``truncation_bound`` entries are then NaN), for
+    callers that use the covariance alone (the fit's weights).
     """
     sizes = np.asarray(tau_samples, dtype=np.int64)
     if estimator not in ("overlapping", "non-overlapping"):
@@ -465,8 +475,8 @@ def allan_estimate_covariance(
             "larger ones (use octave τ)"
         )
     order = np.argsort(sizes, kind="stable")  # summed in increasing τ (the window of A_j covers m_i ≤ m_j)
-    covariance, bound = _covariance_matrix(model, sizes[order], int(length), estimator)
-    return _in_given_order(model, sizes, covariance, bound, np.argsort(order), estimator)
+    covariance, bounds = _covariance_matrix(model, sizes[order], int(length), estimator, bound)
+    return _in_given_order(model, sizes, covariance, bounds, np.argsort(order), estimator)
 
 
 def _in_given_order(
@@ -492,7 +502,7 @@ def allan_estimate_variance(
     terms = _terms_count(sizes, int(length), estimator)
     order = np.argsort(sizes, kind="stable")
     diagonal = [(k, k) for k in range(len(sizes))]
-    sums = _pair_sums(model, sizes[order], terms[order], int(length), estimator, diagonal)
+    sums = _pair_sums(model, sizes[order], terms[order], int(length), estimator, diagonal, bound=False)
     result = np.empty(len(sizes))
     for i, (total, _) in zip(order.tolist(), sums, strict=True):
         m, K = int(sizes[i]), int(terms[i])

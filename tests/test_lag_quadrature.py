@@ -11,7 +11,9 @@
   value for value and bound for bound, what each pair gives alone;
 - c at the Gauss nodes from H on the distinct (q − f, block length) arguments equals the nine-term sum at
   each node to the rounding of the sum (64 ulps of Σ|w_q H|), and a pair batch reused for a second model
-  gives what a fresh one gives.
+  gives what a fresh one gives;
+- the sums without their bounds are the sums with them, and the narrow pairs' γ_z shared on the integers
+  is each pair's own.
 """
 
 from __future__ import annotations
@@ -25,12 +27,14 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
+from carousel_theory.increment_sums import flicker_increment_difference
 from carousel_theory.lag_quadrature import (
     BLOCK_RATIO,
     GAUSS_POINTS,
     LagModel,
     PairBatch,
     _batch_values,
+    _direct_flicker,
     _gauss_rule,
     _make_pair,
     _nine_term_sum,
@@ -172,6 +176,45 @@ def test_batched_pairs_equal_each_pair_alone(d, sizes, length, with_ar, with_fli
     # Each row is reduced in its own order: a batch gives every pair what it gives alone (both sides use
     # the tabulated H; the table against direct evaluation is test_fourth_sum_table_is_direct_evaluation).
     assert batched == alone
+
+
+@given(
+    d=st.floats(min_value=0.02, max_value=0.98),
+    length=st.integers(min_value=40_000, max_value=400_000),
+    with_ar=st.booleans(),
+)
+def test_sums_without_bounds_are_the_sums_with_them(d, length, with_ar):
+    # bounds=False skips the far-tail remainders, the derivative bounds and their sums, nothing else.
+    sizes = [2**k for k in range(14) if 3 * 2**k <= length]
+    terms = [length - 2 * m + 1 for m in sizes]
+    pairs = [(sizes[i], sizes[j], terms[i], terms[j]) for j in range(len(sizes)) for i in range(j + 1)]
+    lag_model = LagModel.of(_flicker_model(d, with_ar))
+    with_bounds = counted_square_sums(lag_model, pairs)
+    without = counted_square_sums(lag_model, pairs, bounds=False)
+    assert [total for total, _ in without] == [total for total, _ in with_bounds]
+    assert all(np.isnan(bound) for _, bound in without)
+    assert all(bound > 0 for _, bound in with_bounds)
+
+
+@given(
+    d=st.floats(min_value=0.02, max_value=0.98),
+    m_i=st.integers(min_value=1, max_value=64),
+    ratio=st.sampled_from([1, 2, 4]),
+    first=st.integers(min_value=-2000, max_value=2000),
+    count=st.integers(min_value=1, max_value=300),
+)
+def test_direct_flicker_from_shared_integers_is_the_pairs_own(d, m_i, ratio, first, count):
+    # γ_z tabulated once on 0 … the largest |δ + u| (shared by the narrow pairs of a batch) gives, bit for
+    # bit, what the pair's own evaluation on the integers its lags reach gives; non-integer lags outside
+    # the support take their own path either way.
+    m_j = m_i * ratio
+    lag_model = LagModel.of(_flicker_model(d, False))
+    outside = 2.0 * m_j + 10.5 + np.arange(3)  # beyond the support, not integers
+    lags = np.concatenate((np.arange(first, first + count, dtype=np.float64), outside))
+    reach = int(np.max(np.abs(lags))) + 2 * m_j
+    integers = flicker_increment_difference(np.arange(reach + 1, dtype=np.float64), d)
+    shared = _direct_flicker(m_i, m_j, lag_model, lags, integers)
+    np.testing.assert_array_equal(shared, _direct_flicker(m_i, m_j, lag_model, lags))
 
 
 @given(

@@ -186,6 +186,25 @@ def test_batched_quadrature_of_a_full_model_against_the_every_lag_engine(d, monk
     assert np.all(result.truncation_bound <= 1e-11 * scale)
 
 
+def test_covariance_without_the_bound_is_the_covariance_with_it():
+    # bound=False (the fit's weights) skips the quadrature's error bound: the same covariance bit for bit,
+    # NaN where the bound was not formed; the exact engine (white + RRW) keeps its zero bound.
+    variances = {"white_variance": 0.5, "rrw_variance": 1e-6, "flicker_variance": 1.0, "ar_variance": 0.3}
+    model = NoiseModel(sample_rate=1.0, flicker_d=0.3, ar_coefficients=(0.8,), **variances)
+    sizes, length = 2 ** np.arange(15), 100_000
+    with_bound = allan_estimate_covariance(model, sizes, length)
+    without = allan_estimate_covariance(model, sizes, length, bound=False)
+    np.testing.assert_array_equal(without.covariance, with_bound.covariance)
+    assert np.all(np.isnan(without.truncation_bound))
+    assert np.all(with_bound.truncation_bound >= 0)
+    finite = NoiseModel(sample_rate=1.0, white_variance=0.5, rrw_variance=1e-6)
+    exact = allan_estimate_covariance(finite, sizes, length, bound=False)
+    np.testing.assert_array_equal(
+        exact.covariance, allan_estimate_covariance(finite, sizes, length).covariance
+    )
+    assert np.all(exact.truncation_bound == 0)
+
+
 def test_short_flicker_record_is_summed_over_every_lag():
     model = NoiseModel(sample_rate=1.0, flicker_variance=1.0, flicker_d=0.7)
     sizes = np.array([1, 2, 4])
