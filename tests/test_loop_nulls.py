@@ -156,3 +156,17 @@ def test_digest_seeded_tests_have_their_size_across_recordings():
     assert abs(rejections / trials - size) <= Z_MONTE_CARLO * standard_error
     same = [bootstrap_generator(MISFIT_STREAM, [np.arange(3.0)]).random() for _ in range(2)]
     assert same[0] == same[1] != bootstrap_generator(FLICKER_STREAM, [np.arange(3.0)]).random()
+
+
+def test_bootstrap_replicates_do_not_depend_on_the_last_bits_of_the_observed_values():
+    # Another summation order or CPU changes the observed Allan variances in their last bits; the replicates
+    # must stay those of the same recording, while a real change of the values draws other ones.
+    observed = np.random.default_rng(8).lognormal(-20.0, 3.0, size=24)
+    nudged = observed.copy()
+    nudged[::2] = np.nextafter(nudged[::2], np.inf)
+    nudged[1::3] = np.nextafter(np.nextafter(nudged[1::3], 0.0), 0.0)
+    first = bootstrap_generator(FLICKER_STREAM, [observed]).random(4)
+    np.testing.assert_array_equal(bootstrap_generator(FLICKER_STREAM, [nudged]).random(4), first)
+    changed = observed.copy()
+    changed[5] *= 1.0 + 1e-6
+    assert not np.array_equal(bootstrap_generator(FLICKER_STREAM, [changed]).random(4), first)

@@ -43,10 +43,12 @@ Each half runs at half the final test's rate (Bonferroni); the reported p is 2 m
 1/f detector's nested-fit statistic to replicates of the whole Allan-variance vector of the fitted model
 (:class:`AllanVarianceSampler`: the long τ exactly from block sums, the short τ Gaussian given them).
 Every bootstrap draws from its own generator (:func:`bootstrap_generator`), seeded with BOOTSTRAP_SEED, a
-stream number per test and a digest of the observed values (their exact float64 bits): a recording gets
-the same decisions on the same numerical platform, and different recordings get independent replicates.
-A change in the last bit of an observed value (another summation order in NumPy or BLAS) draws other
-replicates, which can move a decision that sits at its threshold. The digest matters: with one fixed
+stream number per test and a digest of the observed values rounded to DIGEST_BITS significant bits: a
+recording gets the same decisions on any numerical platform, and different recordings get independent
+replicates. The rounding is what makes the first true across machines: a change in the last bits of an
+observed value (another summation order in NumPy or BLAS, another CPU's kernels) leaves the digest and
+the replicates as they were, unless a value sits within those bits of a rounding midpoint (a chance of
+about 2^(DIGEST_BITS − 52) per last-bit change). The digest matters: with one fixed
 stream the critical value (the largest of the B replicates) would be the same draw for every recording,
 and the test's size over recordings would be one minus that draw's quantile, a random number of mean
 1/(B + 1) but as likely as not far from it (at B = 39, 9 of 43 clean one-hour records rejected at a
@@ -68,6 +70,7 @@ from carousel_theory.closed_loop.residual_model import ResidualFit, chi_square_z
 __all__ = [
     "BOOTSTRAP_SEED",
     "DEFAULT_ALPHA",
+    "DIGEST_BITS",
     "FINAL_SHARE",
     "FLICKER_STREAM",
     "LONG_TAU_TERMS",
@@ -186,16 +189,22 @@ def _long_statistic(parts: dict[str, _LongTau], observed: dict[str, np.ndarray])
     return best
 
 
+#: Significant bits of the observed values that seed the bootstrap generators (module docstring).
+DIGEST_BITS = 32
+
 #: Stream numbers of the loop's Monte Carlo tests (the second word of their generators' seeds).
 MISFIT_STREAM, FLICKER_STREAM = 0, 1
 
 
 def bootstrap_generator(stream: int, observed: list[np.ndarray]) -> np.random.Generator:
     """The generator of one Monte Carlo test on one recording: seeded with BOOTSTRAP_SEED, ``stream`` and a
-    128-bit BLAKE2b digest of the ``observed`` values the test is about (module docstring)."""
+    128-bit BLAKE2b digest of the ``observed`` values the test is about, rounded to DIGEST_BITS significant
+    bits (module docstring)."""
     digest = hashlib.blake2b(digest_size=16)
     for values in observed:
-        digest.update(np.ascontiguousarray(values, dtype=np.float64).tobytes())
+        mantissa, exponent = np.frexp(np.asarray(values, dtype=np.float64))
+        digest.update(np.rint(np.ldexp(mantissa, DIGEST_BITS)).astype(np.int64).tobytes())
+        digest.update(exponent.astype(np.int64).tobytes())
     words = np.frombuffer(digest.digest(), dtype=np.uint32)
     return np.random.default_rng([BOOTSTRAP_SEED, stream, *(int(word) for word in words)])
 
