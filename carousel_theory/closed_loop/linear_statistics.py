@@ -35,6 +35,7 @@ __all__ = [
     "GLS_BLOCKS",
     "RegressorTest",
     "StepScan",
+    "exponential_regressor",
     "fit_with_terms",
     "gls_block",
     "gls_difference_solve",
@@ -79,6 +80,14 @@ def _bands(view: ResidualView, noise: FittedNoise) -> np.ndarray:
 
 def _noise(view: ResidualView, axis: str, noise: FittedNoise | None) -> FittedNoise:
     return view.fits[axis].noise if noise is None else noise
+
+
+def exponential_regressor(view: ResidualView, time_constant: float) -> np.ndarray:
+    """e^{−(t − t₀)/τ_c} at the view's sample times (the warm-up's regressor), formed in one record-length
+    array."""
+    regressor = np.subtract(view.time, view.time[0], dtype=np.float64)
+    np.divide(regressor, -time_constant, out=regressor)
+    return np.exp(regressor, out=regressor)
 
 
 def gls_weights(
