@@ -24,14 +24,13 @@ from pathlib import Path
 
 import numpy as np
 from scipy import stats
-from scipy.linalg import solveh_banded
 
 from carousel_theory.closed_loop.calibration import long_tau_start
+from carousel_theory.closed_loop.linear_statistics import difference_weights
 from carousel_theory.closed_loop.residual_model import (
     FittedNoise,
     ModelTerms,
     ResidualFit,
-    difference_covariance_bands,
     fit_residual_model,
     noise_variances,
     statistic_units,
@@ -108,9 +107,7 @@ def setup(case: Case) -> Setup:
     block = int(pilot.sizes[long_tau_start(pilot, length)])
     count = length // block
     regressor = np.exp(-np.arange(length) / RATE / case.time_constant)
-    means = regressor[: count * block].reshape(count, block).mean(axis=1)
-    solved = solveh_banded(difference_covariance_bands(FittedNoise(model), block, count - 1), np.diff(means))
-    block_weights = (np.concatenate(([0.0], solved)) - np.concatenate((solved, [0.0]))) / block
+    block_weights = difference_weights(FittedNoise(model), regressor, block) / block
     weights = np.zeros(length)
     weights[: count * block] = np.repeat(block_weights, block)
     sums = regressor[: count * block].reshape(count, block).sum(axis=1)
