@@ -25,7 +25,8 @@ from pathlib import Path
 import numpy as np
 from scipy import stats
 
-from carousel_theory.closed_loop.calibration import long_tau_start
+from carousel_theory.closed_loop.calibration import DEFAULT_ALPHA, detector_alpha, long_tau_start
+from carousel_theory.closed_loop.detectors import DETECTORS
 from carousel_theory.closed_loop.linear_statistics import difference_weights
 from carousel_theory.closed_loop.residual_model import (
     FittedNoise,
@@ -36,6 +37,7 @@ from carousel_theory.closed_loop.residual_model import (
     statistic_units,
 )
 from carousel_theory.closed_loop.studentized import trend_reference
+from carousel_theory.closed_loop.trend_detectors import WarmupDetector
 from carousel_theory.noise_model import NoiseModel
 from carousel_theory.simulate import sample_noise
 
@@ -96,6 +98,7 @@ class Setup:
     weights: np.ndarray
     regressor: np.ndarray
     regressor_sums: np.ndarray
+    shape_mean: float
 
 
 def setup(case: Case) -> Setup:
@@ -111,15 +114,18 @@ def setup(case: Case) -> Setup:
     weights = np.zeros(length)
     weights[: count * block] = np.repeat(block_weights, block)
     sums = regressor[: count * block].reshape(count, block).sum(axis=1)
-    return Setup(
-        case, model, terms, length, pilot, block_weights, weights, regressor - regressor.mean(), sums
-    )
+    centred = regressor - regressor.mean()
+    mean = float(regressor.mean())
+    return Setup(case, model, terms, length, pilot, block_weights, weights, centred, sums, mean)
 
 
-def one_record(setup: Setup, seed: int, replicates: int) -> tuple[float, float]:
-    """(z, p) of one whole simulated record (seed: the case's number and ``seed``)."""
+def one_record(setup: Setup, seed: int, replicates: int, amplitude: float = 0.0) -> tuple[float, float]:
+    """(z, p) of one whole simulated record (seed: the case's number and ``seed``), with a warm-up of
+    ``amplitude`` (rad/s) and the case's time constant added."""
     number = list(CASES).index(setup.case.name)
     record = sample_noise(setup.model, setup.length, rng=np.random.default_rng([20261123, number, seed]))
+    if amplitude:
+        record += amplitude * (setup.regressor + setup.shape_mean)
     projection = float(np.dot(setup.weights, record))
     information = float(np.dot(setup.block_weights, setup.regressor_sums))
     record -= (projection / information) * setup.regressor
@@ -137,11 +143,11 @@ def one_record(setup: Setup, seed: int, replicates: int) -> tuple[float, float]:
     return z, reference.sf(z)
 
 
-def run(case: Case, records: int, first_seed: int, replicates: int) -> Path:
+def run(case: Case, records: int, first_seed: int, replicates: int, amplitude: float = 0.0) -> Path:
     prepared = setup(case)
     started, values = time.time(), []
     for seed in range(first_seed, first_seed + records):
-        values.append(one_record(prepared, seed, replicates))
+        values.append(one_record(prepared, seed, replicates, amplitude))
         if len(values) % 200 == 0:
             print(
                 f"{case.name}: {len(values)} records, {time.time() - started:.0f} s",
@@ -150,7 +156,10 @@ def run(case: Case, records: int, first_seed: int, replicates: int) -> Path:
             )
     PARTS.mkdir(exist_ok=True)
     path = PARTS / f"{case.name}_{first_seed}.json"
+    if amplitude:
+        path = PARTS / f"{case.name}_warmup{amplitude:g}_{first_seed}.json"
     part = {
+        "amplitude": amplitude,
         "case": case.name,
         "first_seed": first_seed,
         "replicates": replicates,
@@ -167,13 +176,69 @@ def clopper_pearson(k: int, n: int) -> tuple[float, float]:
     return low, high
 
 
-def write() -> str:
-    parts: dict[str, list[float]] = {}
-    replicates: dict[str, set[int]] = {}
+def _parts() -> tuple[dict[str, dict], dict[tuple[str, float], dict]]:
+    """The parts' p and z by case (null records) and by (case, warm-up amplitude)."""
+    null: dict[str, dict] = {}
+    power: dict[tuple[str, float], dict] = {}
     for path in sorted(PARTS.glob("*.json")):
         part = json.loads(path.read_text())
-        parts.setdefault(part["case"], []).extend(part["p"])
-        replicates.setdefault(part["case"], set()).add(part["replicates"])
+        amplitude = float(part.get("amplitude", 0.0))
+        entry = (
+            power.setdefault((part["case"], amplitude), {})
+            if amplitude
+            else null.setdefault(part["case"], {})
+        )
+        entry.setdefault("p", []).extend(part["p"])
+        entry.setdefault("z", []).extend(part["z"])
+        entry.setdefault("replicates", set()).add(part["replicates"])
+    return null, power
+
+
+def _size_lines(null: dict[str, dict]) -> list[str]:
+    lines = [
+        "| case | records | replicates | α = 0.05 | α = 0.01 | α = 0.001 | KS p-value |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for name, case in CASES.items():
+        if name not in null:
+            continue
+        p = np.asarray(null[name]["p"])
+        cells = []
+        for level in LEVELS:
+            k = int(np.sum(p <= level))
+            low, high = clopper_pearson(k, len(p))
+            cells.append(f"{k} = {k / len(p):.4f} [{low:.4f}, {high:.4f}]")
+        ks = float(stats.kstest(p, "uniform").pvalue)
+        counts = "/".join(str(r) for r in sorted(null[name]["replicates"]))
+        lines.append(f"| {case.description} | {len(p)} | {counts} | {' | '.join(cells)} | {ks:.3g} |")
+    return lines
+
+
+#: The warm-up detector's per-test rate in the loop's first iteration: its share of α = 0.01, Bonferroni
+#: over its 8 time constants and 2 axes.
+LOOP_TEST_LEVEL = detector_alpha(DEFAULT_ALPHA, 1, len(DETECTORS)) / (WarmupDetector.grid_size * 2)
+
+
+def _power_lines(power: dict[tuple[str, float], dict]) -> list[str]:
+    lines = [
+        "| case | warm-up amplitude | records | named, bootstrap reference | named, N(0, 1) reference | "
+        "median z |",
+        "|---|---|---|---|---|---|",
+    ]
+    for (name, amplitude), entry in sorted(power.items()):
+        p, z = np.asarray(entry["p"]), np.asarray(entry["z"])
+        normal = 2.0 * stats.norm.sf(np.abs(z))
+        named, plain = int(np.sum(p <= LOOP_TEST_LEVEL)), int(np.sum(normal <= LOOP_TEST_LEVEL))
+        description = CASES[name].description
+        lines.append(
+            f"| {description} | {amplitude:g} | {len(p)} | {named}/{len(p)} | {plain}/{len(p)} | "
+            f"{float(np.median(z)):.2f} |"
+        )
+    return lines
+
+
+def write() -> str:
+    null, power = _parts()
     lines = [
         "<!-- generated by benchmarks/bench_trend_reference.py --write — do not edit -->",
         "# Trend statistic: size of the studentized bootstrap reference on whole simulated records",
@@ -183,21 +248,17 @@ def write() -> str:
         "Rejections at each level with the 95 % Clopper–Pearson interval; KS: the Kolmogorov–Smirnov test of"
         " the records' p-values against U(0, 1).",
         "",
-        "| case | records | replicates | α = 0.05 | α = 0.01 | α = 0.001 | KS p-value |",
-        "|---|---|---|---|---|---|---|",
+        *_size_lines(null),
+        "",
+        "## Power at the loop's rate",
+        "",
+        f"A warm-up e^{{−t/τ_c}} of the given amplitude added to the records; named when p is at most the"
+        f" warm-up detector's per-test rate in the loop's first iteration ({LOOP_TEST_LEVEL:.3g}: its share"
+        f" of α = 0.01, Bonferroni over 8 time constants and 2 axes). Here τ_c is known (the loop scans it),"
+        f" and the N(0, 1) reference of the same z (which ignores the uncertainty of θ̂) is shown beside.",
+        "",
+        *_power_lines(power),
     ]
-    for name, case in CASES.items():
-        if name not in parts:
-            continue
-        p = np.asarray(parts[name])
-        cells = []
-        for level in LEVELS:
-            k = int(np.sum(p <= level))
-            low, high = clopper_pearson(k, len(p))
-            cells.append(f"{k} = {k / len(p):.4f} [{low:.4f}, {high:.4f}]")
-        ks = float(stats.kstest(p, "uniform").pvalue)
-        counts = "/".join(str(r) for r in sorted(replicates[name]))
-        lines.append(f"| {case.description} | {len(p)} | {counts} | {' | '.join(cells)} | {ks:.3g} |")
     return "\n".join(lines) + "\n"
 
 
@@ -207,6 +268,7 @@ def main() -> None:
     parser.add_argument("--records", type=int, default=100)
     parser.add_argument("--first-seed", type=int, default=0)
     parser.add_argument("--replicates", type=int, default=200)
+    parser.add_argument("--amplitude", type=float, default=0.0, help="warm-up amplitude added (rad/s)")
     parser.add_argument("--write", action="store_true")
     args = parser.parse_args()
     if args.write:
@@ -215,7 +277,7 @@ def main() -> None:
         return
     if args.case is None:
         parser.error("--case is required unless --write")
-    print(run(CASES[args.case], args.records, args.first_seed, args.replicates))
+    print(run(CASES[args.case], args.records, args.first_seed, args.replicates, args.amplitude))
 
 
 if __name__ == "__main__":
