@@ -58,6 +58,7 @@ class Case:
     seconds: float = 3600.0
     time_constant: float = TIME_CONSTANT
     raised_walk: float = 0.0  # the replicates' walk raised to at least this many of its GLS se
+    walk_quantiles: int = 0  # replicates' walk at this many quantiles of N(θ̂_q, se²) truncated at 0
 
 
 CASES = {
@@ -82,6 +83,32 @@ CASES = {
             327.68,
             20.0,
             2.0,
+        ),
+        Case(
+            "short_small_walk_mixed",
+            "as above, replicates' walk at 8 quantiles of N(σ̂_q², se²) truncated at 0",
+            1e-12,
+            0.0,
+            327.68,
+            20.0,
+            walk_quantiles=8,
+        ),
+        Case(
+            "short_walk_inside",
+            "white + walk 1e-9 (4.5 GLS se), 327.68 s, τ_c = 20 s",
+            1e-9,
+            0.0,
+            327.68,
+            20.0,
+        ),
+        Case(
+            "short_walk_inside_mixed",
+            "as above, replicates' walk at 8 quantiles of N(σ̂_q², se²) truncated at 0",
+            1e-9,
+            0.0,
+            327.68,
+            20.0,
+            walk_quantiles=8,
         ),
     )
 }
@@ -132,15 +159,31 @@ def one_record(setup: Setup, seed: int, replicates: int, amplitude: float = 0.0)
     fit = fit_residual_model(record, RATE, setup.terms, reference=setup.pilot)
     variance = statistic_units(setup.weights).variance(noise_variances(fit.noise))
     z = projection / math.sqrt(max(variance, 1e-300))
-    generating = None
-    if setup.case.raised_walk:
-        floor = setup.case.raised_walk * fit.noise.standard_errors["rrw_variance"]
-        model = fit.noise.model
-        generating = replace(fit.noise, model=replace(model, rrw_variance=max(model.rrw_variance, floor)))
-    reference = trend_reference(
-        fit, setup.length, setup.block_weights, projection, setup.regressor_sums, replicates, generating
-    )
-    return z, reference.sf(z)
+    walks = _generating_walks(setup.case, fit)
+    fitted = fit.noise.model.rrw_variance
+    generating = [
+        None if walk == fitted else replace(fit.noise, model=replace(fit.noise.model, rrw_variance=walk))
+        for walk in walks
+    ]
+    share = max(replicates // len(generating), 1)
+    references = [
+        trend_reference(
+            fit, setup.length, setup.block_weights, projection, setup.regressor_sums, share, noise
+        )
+        for noise in generating
+    ]
+    return z, float(np.mean([reference.sf(z) for reference in references]))
+
+
+def _generating_walks(case: Case, fit: ResidualFit) -> list[float]:
+    """The walk variances the replicates are drawn from: the fitted one, raised to ``raised_walk`` se, or
+    ``walk_quantiles`` stratified quantiles of N(σ̂_q², se²) truncated at 0."""
+    walk, error = float(fit.noise.model.rrw_variance), fit.noise.standard_errors["rrw_variance"]
+    if case.walk_quantiles:
+        below = stats.norm.cdf(-walk / error)
+        levels = below + (1.0 - below) * (np.arange(case.walk_quantiles) + 0.5) / case.walk_quantiles
+        return [max(walk + error * float(stats.norm.ppf(level)), 0.0) for level in levels]
+    return [max(walk, case.raised_walk * error)]
 
 
 def run(case: Case, records: int, first_seed: int, replicates: int, amplitude: float = 0.0) -> Path:
