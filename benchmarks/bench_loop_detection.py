@@ -274,20 +274,19 @@ def _asymptotic_flicker_rejects(view: Any, alpha: float) -> bool:
 def _coverage_misses(view: Any, axis: str) -> dict[str, list[int]]:
     """For the weights of a middle step, a warm-up (τ_c = T/20) and the temperature column, chosen under
     the fit: is V(θ) above the upper bound V̂ + Φ̄⁻¹(γ) se(V̂) at each γ of COVERAGE_GAMMAS?"""
-    from carousel_theory.closed_loop.linear_statistics import gls_weights, step_scan
+    from carousel_theory.closed_loop.linear_statistics import exponential_regressor, gls_weights, step_scan
     from carousel_theory.closed_loop.residual_model import (
         FittedNoise,
         statistic_variance,
         statistic_variance_error,
     )
-    from carousel_theory.closed_loop.trend_detectors import _exponential
     from carousel_theory.noise_model import NoiseModel
 
     true = FittedNoise(NoiseModel(RATE, white_variance=WHITE, rrw_variance=WALK))
     span = float(view.time[-1] - view.time[0])
     weights = {
         "steps": step_scan(view, axis).middle_weights,
-        "warmup": gls_weights(view, axis, _exponential(view, span / 20.0)),
+        "warmup": gls_weights(view, axis, exponential_regressor(view, span / 20.0)),
         "temperature": gls_weights(view, axis, view.temperature),
     }
     misses = {}
@@ -454,9 +453,8 @@ def _known_variance_warmup_z(cases: list[PairCase]) -> dict[str, float]:
     """The z of each case's warm-up with the noise variances known (the injected white, walk and 1/f):
     A (wᵀg)/√V(w), g = e^{−t/τ_c}, w its GLS weights, V the exact variance under the injected noise —
     the warm-up's detection limit under that noise, without the uncertainty of fitted variances."""
-    from carousel_theory.closed_loop.linear_statistics import gls_weights
+    from carousel_theory.closed_loop.linear_statistics import exponential_regressor, gls_weights
     from carousel_theory.closed_loop.residual_model import FittedNoise, statistic_variance
-    from carousel_theory.closed_loop.trend_detectors import _exponential
     from carousel_theory.closed_loop.view import ModelSpec, build_view
     from carousel_theory.noise_model import NoiseModel
 
@@ -468,7 +466,7 @@ def _known_variance_warmup_z(cases: list[PairCase]) -> dict[str, float]:
             continue
         flicker = _injected(case, "flicker").get("variance", 0.0)
         walk = NoiseModel(RATE, white_variance=WHITE, rrw_variance=case.rrw_variance)
-        shape = _exponential(view, warmup["time_constant"])
+        shape = exponential_regressor(view, warmup["time_constant"])
         weights = gls_weights(view, "wx", shape, FittedNoise(walk))
         model = replace(walk, flicker_variance=flicker)
         variance = statistic_variance(FittedNoise(model), weights)

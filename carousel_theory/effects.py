@@ -127,9 +127,11 @@ class Steps(Effect):
     kind = "additive"
     summary = "abrupt bias jumps (a bias step at time t₀)"
     detection = (
-        "max over t₀ of |z| of the generalised-least-squares estimate of a bias step between samples t₀ and "
-        "t₀ + 1 under white noise + rate random walk (all t₀ from one tridiagonal solve), sd from the whole "
-        "fitted model; " + _BOUNDED_REFERENCE + "; Bonferroni over the n − 1 positions and the axes"
+        "max over t₀ of |z| of the generalised-least-squares estimate of a bias step after block t₀ of the "
+        "record's b-sample block means (b = ⌈n / GLS_BLOCKS⌉, closed_loop.linear_statistics) under white "
+        "noise + rate random walk (all t₀ from one tridiagonal solve), sd from the whole fitted model; "
+        + _BOUNDED_REFERENCE
+        + "; Bonferroni over the n/b − 1 block boundaries and the axes"
     )
     enters_model = "a term h · 1[t ≥ t₀] added to the bias, for up to 5 jumps"
     removal = "each jump at the maximum |z|, its height by generalised least squares; subtracted; repeated"

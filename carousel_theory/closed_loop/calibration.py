@@ -75,6 +75,7 @@ __all__ = [
     "FLICKER_STREAM",
     "LONG_TAU_TERMS",
     "MISFIT_STREAM",
+    "TREND_STREAM",
     "AllanVarianceSampler",
     "MisfitTest",
     "bootstrap_generator",
@@ -193,7 +194,7 @@ def _long_statistic(parts: dict[str, _LongTau], observed: dict[str, np.ndarray])
 DIGEST_BITS = 32
 
 #: Stream numbers of the loop's Monte Carlo tests (the second word of their generators' seeds).
-MISFIT_STREAM, FLICKER_STREAM = 0, 1
+MISFIT_STREAM, FLICKER_STREAM, TREND_STREAM = 0, 1, 2
 
 
 def bootstrap_generator(stream: int, observed: list[np.ndarray]) -> np.random.Generator:

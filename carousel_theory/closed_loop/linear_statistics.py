@@ -35,6 +35,8 @@ __all__ = [
     "GLS_BLOCKS",
     "RegressorTest",
     "StepScan",
+    "difference_weights",
+    "exponential_regressor",
     "fit_with_terms",
     "gls_block",
     "gls_difference_solve",
@@ -81,15 +83,31 @@ def _noise(view: ResidualView, axis: str, noise: FittedNoise | None) -> FittedNo
     return view.fits[axis].noise if noise is None else noise
 
 
+def exponential_regressor(view: ResidualView, time_constant: float) -> np.ndarray:
+    """e^{−(t − t₀)/τ_c} at the view's sample times (the warm-up's regressor), formed in one record-length
+    array."""
+    regressor = np.subtract(view.time, view.time[0], dtype=np.float64)
+    np.divide(regressor, -time_constant, out=regressor)
+    return np.exp(regressor, out=regressor)
+
+
+def difference_weights(noise: FittedNoise, regressor: np.ndarray, block: int) -> np.ndarray:
+    """Dᵀ Σ_Δ⁻¹ D ḡ, ḡ the means of the complete blocks of ``block`` samples of ``regressor``, D the first
+    difference (which also removes the bias), Σ_Δ the tridiagonal covariance of the differenced block
+    means under ``noise``: the GLS weights of the block means."""
+    count = len(regressor) // block
+    means = regressor[: count * block].reshape(count, block).mean(axis=1)
+    bands = difference_covariance_bands(noise, block, count - 1)
+    solved = solveh_banded(bands, np.diff(means), check_finite=False)
+    return np.concatenate(([0.0], solved)) - np.concatenate((solved, [0.0]))
+
+
 def gls_weights(
     view: ResidualView, axis: str, regressor: np.ndarray, noise: FittedNoise | None = None
 ) -> np.ndarray:
-    """Sample weights w of the GLS projection on ``regressor``: w = Dᵀ Σ_Δ⁻¹ D g, D the first difference
-    (which also removes the bias), Σ_Δ the tridiagonal covariance of the differences."""
-    solved = solveh_banded(
-        _bands(view, _noise(view, axis, noise)), np.diff(_block_means(view, regressor)), check_finite=False
-    )
-    return _expand(view, np.concatenate(([0.0], solved)) - np.concatenate((solved, [0.0])))
+    """Sample weights w of the GLS projection on ``regressor``: w = Dᵀ Σ_Δ⁻¹ D g on the view's blocks
+    (:func:`difference_weights`), each block's weight spread over its samples."""
+    return _expand(view, difference_weights(_noise(view, axis, noise), regressor, gls_block(view)))
 
 
 def gls_difference_solve(view: ResidualView, axis: str, vector: np.ndarray) -> np.ndarray:

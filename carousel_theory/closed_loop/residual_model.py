@@ -22,30 +22,37 @@ import numpy as np
 from scipy import stats
 
 from carousel_theory import units
+from carousel_theory.closed_loop.flicker_blocks import flicker_block_sums
 from carousel_theory.fitting import FitOptions, FitResult, fit_observed, observe_allan, yule_walker
 from carousel_theory.noise_model import NoiseModel, ar_autocovariance, term_allan_variance
-from carousel_theory.processes import sample_flicker
+from carousel_theory.processes import fractionally_integrate, sample_flicker
 from carousel_theory.propagation import repeated_weights_bin_variances, weighted_sum_variance
 
 __all__ = [
     "VARIANCE_NAMES",
     "FittedNoise",
     "ModelTerms",
+    "NoiseVariances",
     "ResidualFit",
+    "StatisticUnits",
     "StatisticVariance",
     "allan_z_values",
     "bounded_noise",
     "chi_square_z",
+    "covariance_product",
     "describe_noise",
     "difference_covariance_bands",
     "fit_residual_model",
     "model_curve_error",
     "nested_statistic",
     "noise_growth",
+    "noise_variances",
     "ranking_statistic_variance",
     "revolution_bin_variance",
+    "simulate_block_sum_draws",
     "simulate_block_sums",
     "spectral_density",
+    "statistic_units",
     "statistic_variance",
     "statistic_variance_error",
     "uniform_bin_variances",
@@ -265,24 +272,97 @@ class StatisticVariance:
 def statistic_variance_error(noise: FittedNoise, weights: np.ndarray) -> StatisticVariance:
     """Var(Σ w_t e_t) and its standard error.
 
-    The variance V = Σ_i θ_i u_i(w) as :func:`statistic_variance` (θ the fitted variances, u_i the
-    variance of the statistic per unit of each); its standard error √(uᵀ Σ_θ u) by the delta method,
+    The variance V = Σ_i θ_i u_i(w) (:func:`statistic_units`, θ the fitted variances, u_i the variance of
+    the statistic per unit of each); its standard error √(uᵀ Σ_θ u) by the delta method,
     Σ_θ the fitter's GLS covariance of the variances (:class:`FittedNoise`; the white, walk and 1/f
     estimates are correlated through the Allan variance they share, which the quadratic form keeps).
     The walk's share counts even at a fitted σ_q² of 0: its standard error still says how large it could
     be. A variance without a covariance row counts as uncertain by its own size."""
     model = noise.model
-    parts = {"long_run_white_variance": (_long_run_variance(model), float(np.dot(weights, weights)))}
-    parts["rrw_variance"] = (model.rrw_variance, weighted_sum_variance(weights, "rrw"))
-    if model.flicker_variance or "flicker_variance" in noise.names:
-        flicker_unit = weighted_sum_variance(weights, "flicker", d=model.flicker_d)
-        parts["flicker_variance"] = (model.flicker_variance, flicker_unit)
+    flicker = bool(model.flicker_variance) or "flicker_variance" in noise.names
+    per_unit, theta = statistic_units(weights, model.flicker_d, flicker=flicker), noise_variances(noise)
+    parts = {
+        "long_run_white_variance": (theta.long_run_white, per_unit.long_run_white),
+        "rrw_variance": (theta.rrw, per_unit.rrw),
+    }
+    if flicker:
+        parts["flicker_variance"] = (theta.flicker, per_unit.flicker)
     variance = sum(value * unit for value, unit in parts.values())
     rows = [i for i, name in enumerate(noise.names) if name in parts]
     units = np.array([parts[noise.names[i]][1] for i in rows])
     spread = float(units @ noise.covariance[np.ix_(rows, rows)] @ units) if rows else 0.0
     spread += sum((unit * value) ** 2 for name, (value, unit) in parts.items() if name not in noise.names)
     return StatisticVariance(variance, math.sqrt(max(spread, 0.0)))
+
+
+@dataclass(frozen=True)
+class NoiseVariances:
+    """The variances the loop's tests use (VARIANCE_NAMES): the short noise's long-run variance, the walk
+    and the 1/f variance (0 when the model has none)."""
+
+    long_run_white: float
+    rrw: float
+    flicker: float
+
+
+def noise_variances(noise: FittedNoise) -> NoiseVariances:
+    """θ of ``noise`` as :class:`NoiseVariances`."""
+    model = noise.model
+    return NoiseVariances(_long_run_variance(model), float(model.rrw_variance), float(model.flicker_variance))
+
+
+@dataclass(frozen=True)
+class StatisticUnits:
+    """u_i(w), the variance of Σ w_t e_t per unit of each variance of :class:`NoiseVariances`:
+    Σ w² for the short noise, TIM 2014 eq. (2) for the walk, eq. (3) of order ``flicker_d`` for the 1/f
+    term; V(θ) = Σ_i θ_i u_i(w)."""
+
+    long_run_white: float
+    rrw: float
+    flicker: float
+
+    def variance(self, theta: NoiseVariances) -> float:
+        """V(θ) = Σ_i θ_i u_i."""
+        return (
+            theta.long_run_white * self.long_run_white + theta.rrw * self.rrw + theta.flicker * self.flicker
+        )
+
+    def of_parameter(self, parameter: str) -> float:
+        """u of a fitter parameter (``white_variance``, ``ar_variance`` — both the short noise's long-run
+        variance per unit —, ``rrw_variance``, ``flicker_variance``)."""
+        name = _FITTER_PARAMETER[parameter]
+        return {"long_run_white_variance": self.long_run_white, "rrw_variance": self.rrw}.get(
+            name, self.flicker
+        )
+
+
+def statistic_units(
+    weights: np.ndarray, flicker_d: float = FLICKER_D, *, flicker: bool = True
+) -> StatisticUnits:
+    """:class:`StatisticUnits` of ``weights`` (1/f of order ``flicker_d``; its unit left at 0 without
+    ``flicker``)."""
+    return StatisticUnits(
+        float(np.dot(weights, weights)),
+        weighted_sum_variance(weights, "rrw"),
+        weighted_sum_variance(weights, "flicker", d=flicker_d) if flicker else 0.0,
+    )
+
+
+def covariance_product(noise: FittedNoise, weights: np.ndarray) -> np.ndarray:
+    """Σ w, Σ the covariance of the model's samples (bias left out), so that Cov(e, Σ w_t e_t) = Σ w.
+
+    Short noise: its long-run variance times w (exact for white). Walk (TIM 2014 eq. (2)), x = C q with C
+    the lower-triangular matrix of ones: σ_q² C Cᵀ w by a suffix sum and a prefix sum. 1/f (eq. (3)),
+    x = Ψ ε with Ψ the lower-triangular Toeplitz matrix of the ψ_j: σ_f² Ψ Ψᵀ w by two FFT convolutions."""
+    model = noise.model
+    product = _long_run_variance(model) * weights
+    if model.rrw_variance:
+        suffix = np.cumsum(weights[::-1])[::-1]
+        product = product + model.rrw_variance * np.cumsum(suffix)
+    if model.flicker_variance:
+        transposed = fractionally_integrate(weights[::-1], model.flicker_d)[::-1]
+        product = product + model.flicker_variance * fractionally_integrate(transposed, model.flicker_d)
+    return product
 
 
 def bounded_noise(
@@ -436,30 +516,55 @@ def noise_growth(
     ]
 
 
+def _walk_block_sums(
+    variance: float, block: int, shape: tuple[int, ...], rng: np.random.Generator
+) -> np.ndarray:
+    """Block sums of a rate random walk (TIM 2014 eq. (2), r_0 = 0) along the last axis of ``shape``:
+    block j's sum is b R_j + W_j, R_j the walk before the block and
+    (I_j = Σ_k q_k, W_j = Σ_k (b − k + 1) q_k) Gaussian with Var I = b σ_q², Var W = σ_q² Σ_k k²,
+    Cov = σ_q² Σ_k k — exact."""
+    # Σ_k k and Σ_k k² over the block, exact integer sums (the weights of W are b, b − 1, …, 1)
+    linear, square = sum(range(1, block + 1)), sum(k * k for k in range(1, block + 1))
+    covariance = variance * np.array([[block, linear], [linear, square]], dtype=np.float64)
+    if block == 1:  # I = W = q₁: the covariance is singular, and Cholesky refuses it
+        pairs = np.repeat(rng.normal(0.0, math.sqrt(variance), (*shape, 1)), 2, axis=-1)
+    else:
+        pairs = rng.multivariate_normal(np.zeros(2), covariance, shape, method="cholesky")
+    before = np.zeros(shape)
+    before[..., 1:] = np.cumsum(pairs[..., :-1, 0], axis=-1)
+    return block * before + pairs[..., 1]
+
+
 def simulate_block_sums(noise: FittedNoise, length: int, block: int, rng: np.random.Generator) -> np.ndarray:
     """Sums of ``block`` consecutive samples of one draw of the fitted model (bias 0), ``length // block``
     of them, without simulating every sample for the white and random-walk parts.
 
     Short noise: independent N(0, σ_LR² b) (exact for white; for the autoregressive noise the block sums
-    are correlated only through O(correlation length / b) edge terms). Rate random walk (TIM 2014 eq. (2)):
-    block j's sum is b R_j + W_j with R_j the walk before the block, and the pair (I_j = Σ_k q_k,
-    W_j = Σ_k (b − k + 1) q_k) of the block's increments Gaussian with Var I = b σ_q²,
-    Var W = σ_q² Σ_k k², Cov = σ_q² Σ_k k — exact. 1/f noise is simulated sample by sample."""
+    are correlated only through O(correlation length / b) edge terms). Rate random walk: exact
+    (:func:`_walk_block_sums`). 1/f noise is simulated sample by sample."""
     model, count = noise.model, length // block
     total = rng.normal(0.0, math.sqrt(_long_run_variance(model) * block), count)
     if model.rrw_variance:
-        # Σ_k k and Σ_k k² over the block, exact integer sums (the weights of W are b, b − 1, …, 1)
-        linear, square = sum(range(1, block + 1)), sum(k * k for k in range(1, block + 1))
-        covariance = model.rrw_variance * np.array([[block, linear], [linear, square]], dtype=np.float64)
-        if block == 1:  # I = W = q₁: the covariance is singular, and Cholesky refuses it
-            pairs = np.repeat(rng.normal(0.0, math.sqrt(model.rrw_variance), (count, 1)), 2, axis=1)
-        else:
-            pairs = rng.multivariate_normal(np.zeros(2), covariance, count, method="cholesky")
-        before = np.concatenate(([0.0], np.cumsum(pairs[:-1, 0])))
-        total += block * before + pairs[:, 1]
+        total += _walk_block_sums(model.rrw_variance, block, (count,), rng)
     if model.flicker_variance:
         flicker = sample_flicker(count * block, rng=rng, d=model.flicker_d, variance=model.flicker_variance)
         total += flicker.reshape(count, block).sum(axis=1)
+    return total
+
+
+def simulate_block_sum_draws(
+    noise: FittedNoise, length: int, block: int, replicates: int, rng: np.random.Generator
+) -> np.ndarray:
+    """``replicates`` independent draws of :func:`simulate_block_sums` as the rows of one array, the 1/f
+    block sums from their low-rank factor
+    (:func:`~carousel_theory.closed_loop.flicker_blocks.flicker_block_sums`, exact covariance to
+    FLICKER_RANK_TOLERANCE) instead of sample by sample."""
+    model, count = noise.model, length // block
+    total = rng.normal(0.0, math.sqrt(_long_run_variance(model) * block), (replicates, count))
+    if model.rrw_variance:
+        total += _walk_block_sums(model.rrw_variance, block, (replicates, count), rng)
+    if model.flicker_variance:
+        total += flicker_block_sums(model.flicker_variance, model.flicker_d, block, count, rng, replicates)
     return total
 
 

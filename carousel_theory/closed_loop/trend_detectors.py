@@ -30,6 +30,7 @@ from carousel_theory.closed_loop.detection import (
 from carousel_theory.closed_loop.linear_statistics import (
     COMPETING_TERM_LEVEL,
     RegressorTest,
+    exponential_regressor,
     gls_block,
     gls_difference_solve,
     gls_weights,
@@ -69,13 +70,6 @@ def _best(results: list[_AxisResult], alpha: float) -> tuple[_AxisResult, tuple[
     return min(results, key=lambda r: r.log10_p), significant
 
 
-def _exponential(view: ResidualView, time_constant: float) -> np.ndarray:
-    """e^{−(t − t₀)/τ_c} at the view's sample times, formed in one record-length array."""
-    regressor = np.subtract(view.time, view.time[0], dtype=np.float64)
-    np.divide(regressor, -time_constant, out=regressor)
-    return np.exp(regressor, out=regressor)
-
-
 class WarmupDetector:
     """max over time constants τ_c of |z| of the GLS amplitude of e^{−t/τ_c}, jointly with a 1/f term."""
 
@@ -92,13 +86,16 @@ class WarmupDetector:
         noise = ranking_noise(view, axis)
         ranked = max(
             (
-                (regressor_test(view, axis, _exponential(view, tc), quick=True, ranking=noise).z, float(tc))
+                (
+                    regressor_test(view, axis, exponential_regressor(view, tc), quick=True, ranking=noise).z,
+                    float(tc),
+                )
                 for tc in self._grid(view)
             ),
             key=lambda pair: abs(pair[0]),
         )
         joint = ModelTerms(view.spec.terms.ar_order, flicker=True)
-        result = regressor_test(view, axis, _exponential(view, ranked[1]), refit_terms=joint)
+        result = regressor_test(view, axis, exponential_regressor(view, ranked[1]), refit_terms=joint)
         details = {
             "time_constant_s": ranked[1],
             "amplitude": result.amplitude,
@@ -130,14 +127,14 @@ class WarmupDetector:
         for axis in view.axes:
             best = (-1.0, centre, 0.0)
             for time_constant in fine:
-                regressor = _exponential(view, time_constant)
+                regressor = exponential_regressor(view, time_constant)
                 weights = gls_weights(view, axis, regressor)
                 information = float(np.dot(weights, regressor))
                 projection = float(np.dot(weights, view.residuals[axis]))
                 if information > 0 and projection**2 / information > best[0]:
                     best = (projection**2 / information, float(time_constant), projection / information)
             _, time_constant, amplitude = best
-            curve = _exponential(view, time_constant)
+            curve = exponential_regressor(view, time_constant)
             curve *= amplitude
             curve -= curve.mean()
             signals[axis] = curve

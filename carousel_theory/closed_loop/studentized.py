@@ -1,0 +1,314 @@
+"""The null distribution of a trend statistic studentized by its refitted noise model (parametric bootstrap).
+
+A trend detector computes a GLS linear statistic L = Σ w_t e_t of the residual e and studentizes it by
+the variance its fitted noise model gives, z = L / √V(θ̂), V(θ) = Σ_i θ_i u_i(w)
+(:class:`~carousel_theory.closed_loop.residual_model.StatisticUnits`; θ the short noise's long-run
+variance, the walk and the 1/f variance, TIM 2014 eqs. (2)–(3)). θ̂ is the fitter's non-negative GLS fit
+of the Allan variance of r = e (no regressor) or r = e − (L/I) g (a regressor g refitted jointly,
+I = Σ w_t g_t). Given θ, L ~ N(0, V(θ)); but θ̂ is estimated from the same record, and L and the Allan
+variances are dependent (uncorrelated, both functions of one Gaussian record), so the reference of z is
+drawn from the fitted model θ̂ itself (a parametric bootstrap; Davison & Hinkley 1997 §5.2.1), with the
+observed z formed with V(θ̂) of the actual fit and the same map from record to z in every replicate.
+
+**The exact structure.** Under a model θ with covariance Σ, write u = Σ w, V = wᵀ u and
+e = (L/V) u + e⊥, e⊥ independent of L. Then r = e⊥ + (L/V) h with h = u − (V/I) g (h = u without a
+regressor), and the Allan variance is A(r) = A(e⊥) + 2 (L/V) B(e⊥, h) + (L/V)² A(h): A(e⊥) quadratic and
+B(e⊥, h) linear in e⊥, both drawn from one draw of e⊥. Each replicate k draws the record's block sums at
+the first long τ (``block`` samples, the weights constant over these blocks) from θ̂ exactly
+(:func:`~carousel_theory.closed_loop.residual_model.simulate_block_sum_draws`), forms L*, e⊥* = e* − (L*/V) u
+and, *for every value of L*, the Allan variance A(r*(L)) at the long τ exactly, refits θ̂*(L) by the
+fitter's non-negative GLS step under the fit's covariance across τ, and so knows the whole set
+R_k(t) = {L : |L| > t √V(θ̂*(L))}. The Gaussian part is integrated exactly: P(|z*| > t) = mean_k P(L ∈ R_k(t)),
+L ~ N(0, V) independent of e⊥*. The set is found on a grid of x = L/√V over [−X, X] (crossings
+interpolated linearly), X = GRID_LIMIT where 2Φ̄(X) < 1e-32; the non-negative GLS solution at each x
+is the one active set that satisfies the Kuhn–Tucker conditions (each is a quadratic in x).
+
+**Short τ.** The Allan variances at τ with more than LONG_TAU_TERMS differences are drawn Gaussian given
+the long ones (:class:`~carousel_theory.closed_loop.calibration.AllanVarianceSampler`) and held at their
+value for the drawn L*: the part of L in them, (L/V)² A(h) and 2 (L/V) B(e⊥, h) at τ of a few samples, is of
+relative size t²/n and t/√n against sampling errors of √(2/n) — left out. Whole simulated records
+measure what these choices cost (benchmarks/bench_trend_reference.py, tests/test_trend_reference.py).
+
+**At the boundary.** Drawn from θ̂ itself, the reference is that of a world whose walk (or 1/f) variance
+is the fitted one; when the data cannot tell that variance from 0, θ̂ is 0 in about half the records and
+the bootstrap is not consistent there (Andrews 2000, Econometrica 68, 399): the replicates' refitted
+walk can only err upwards, while the record's erred downwards. ``generating`` lets the replicates be
+drawn from another model (a walk raised off the boundary); the observed z keeps V(θ̂) of the actual fit.
+What either choice does to the size is measured on whole records (benchmarks/bench_trend_reference.py).
+
+The weights are held fixed (they are chosen from a fit, and so depend on the record through its Allan
+variance, which is left out). Replicates come from
+:func:`~carousel_theory.closed_loop.calibration.bootstrap_generator`, seeded by a digest of the observed
+Allan variances and L, so a recording always gets the same decision.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import optimize, stats
+
+from carousel_theory.closed_loop.calibration import (
+    TREND_STREAM,
+    AllanVarianceSampler,
+    bootstrap_generator,
+    long_tau_start,
+)
+from carousel_theory.closed_loop.residual_model import (
+    FittedNoise,
+    ResidualFit,
+    covariance_product,
+    noise_variances,
+    simulate_block_sum_draws,
+    statistic_units,
+)
+from carousel_theory.fitting import COMPONENT_OF_PARAMETER
+from carousel_theory.noise_model import term_allan_variance
+
+__all__ = [
+    "GRID_LIMIT",
+    "GRID_STEP",
+    "REPLICATES",
+    "TrendReference",
+    "model_curve",
+    "octave_products",
+    "trend_reference",
+]
+
+#: Bootstrap replicates per test.
+REPLICATES = 400
+#: The grid of x = L/√V runs over [−GRID_LIMIT, GRID_LIMIT] (2Φ̄(12) = 3.6e-33) in steps of GRID_STEP.
+GRID_LIMIT = 12.0
+GRID_STEP = 0.02
+#: Largest |z| searched for a threshold.
+_LARGEST_Z = 60.0
+
+
+def octave_products(x_sums: np.ndarray, y_sums: np.ndarray, levels: int, block: int) -> np.ndarray:
+    """The bilinear octave Allan variance B(x, y) = Σ Δx̄ Δȳ / (2 (N − 1)) at m = block · 2^k, k < levels,
+    from sums of ``block`` samples along the last axis (B(x, x) is the non-overlapping Allan variance,
+    TIM 2014 eq. (20)); rows of ``x_sums`` against ``y_sums`` broadcast."""
+    x, y = np.asarray(x_sums, dtype=np.float64), np.asarray(y_sums, dtype=np.float64)
+    result = np.empty((*np.broadcast_shapes(x.shape[:-1], y.shape[:-1]), levels))
+    for level in range(levels):
+        if level:
+            count = x.shape[-1] // 2
+            x = x[..., : 2 * count : 2] + x[..., 1 : 2 * count : 2]
+            y = y[..., : 2 * count : 2] + y[..., 1 : 2 * count : 2]
+        size = block * 2**level
+        products = np.sum(np.diff(x, axis=-1) * np.diff(y, axis=-1), axis=-1)
+        result[..., level] = products / (2.0 * size**2 * (x.shape[-1] - 1))
+    return result
+
+
+@dataclass(frozen=True)
+class _ActiveSets:
+    """The non-negative GLS step of the fitter as a function of its (whitened, column-scaled) data y:
+    for each active set S, θ_S = P_S y (0 off S), the Kuhn–Tucker gradient G_S y of the columns off S, and
+    V = c_S · θ_S; a solution is the set with θ_S ≥ 0 and G_S y ≥ 0."""
+
+    projections: np.ndarray  # (sets, p, K): rows off S are 0
+    gradients: np.ndarray  # (sets, p, K): rows on S are 0
+    units: np.ndarray  # (p,): V per unit of each scaled coefficient
+
+    @classmethod
+    def from_design(cls, whitened: np.ndarray, units: np.ndarray) -> _ActiveSets:
+        scale = np.linalg.norm(whitened, axis=0)
+        scale[scale == 0] = 1.0
+        design = whitened / scale
+        p, k = design.shape[1], design.shape[0]
+        projections, gradients = [], []
+        for size in range(p + 1):
+            for active in itertools.combinations(range(p), size):
+                projection = np.zeros((p, k))
+                if active:
+                    columns = design[:, list(active)]
+                    projection[list(active)] = np.linalg.pinv(columns)
+                gradient = design.T @ (design @ projection - np.eye(k))
+                gradient[list(active)] = 0.0
+                projections.append(projection)
+                gradients.append(gradient)
+        return cls(np.array(projections), np.array(gradients), units / scale)
+
+    def conditions(self, data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(θ_S, G_S y) of every active set for each row of ``data`` (…, K): (…, sets, p) each."""
+        theta = np.einsum("spk,...k->...sp", self.projections, data)
+        return theta, np.einsum("spk,...k->...sp", self.gradients, data)
+
+    def variance(self, theta: np.ndarray, gradient: np.ndarray) -> np.ndarray:
+        """V(θ̂) of the non-negative GLS fit from :meth:`conditions`: the active set with the least
+        violation of the Kuhn–Tucker conditions (0 at the solution)."""
+        violation = np.maximum(np.max(-theta, axis=-1), np.max(-gradient, axis=-1))
+        chosen = np.argmin(violation, axis=-1)
+        best = np.take_along_axis(theta, chosen[..., np.newaxis, np.newaxis], axis=-2)[..., 0, :]
+        return best @ self.units
+
+
+@dataclass(frozen=True)
+class TrendReference:
+    """The bootstrap reference of z = L/√V(θ̂) (module docstring): ``variance`` is V = V(θ̂) of the
+    observed fit, and the rows of ``constant``, ``linear``, ``square`` the whitened Allan-variance vectors
+    y_k(x) = constant_k + x linear_k + x² square_k of replicate k at L = x √V."""
+
+    variance: float
+    sets: _ActiveSets
+    constant: np.ndarray
+    linear: np.ndarray
+    square: np.ndarray
+
+    def ratio(self, x: np.ndarray) -> np.ndarray:
+        """V(θ̂*_k(x √V)) / V for every replicate k (rows) and x (columns); θ_S and the Kuhn–Tucker
+        gradients are quadratics in x, formed from their coefficients."""
+        powers = (np.ones_like(x), x, x * x)
+        theta = gradient = 0.0
+        for power, data in zip(powers, (self.constant, self.linear, self.square), strict=True):
+            part_theta, part_gradient = self.sets.conditions(data)
+            shape = (1, len(x), 1, 1)
+            theta = theta + part_theta[:, np.newaxis] * power.reshape(shape)
+            gradient = gradient + part_gradient[:, np.newaxis] * power.reshape(shape)
+        return self.sets.variance(np.asarray(theta), np.asarray(gradient)) / self.variance
+
+    def sf(self, z: float) -> float:
+        """P*(|z*| > |z|) = mean_k P(x ∈ R_k), x ~ N(0, 1) (module docstring)."""
+        grid = np.arange(0.0, GRID_LIMIT + GRID_STEP / 2, GRID_STEP)
+        total = np.zeros(len(self.constant))
+        for sign in (1.0, -1.0):
+            gap = grid**2 - z * z * self.ratio(sign * grid)  # > 0: rejected
+            total += _normal_mass(grid, gap)
+        return float(np.mean(total))
+
+    def log10_p(self, z: float, tests: int) -> float:
+        """log10 of the p-value of |z|, Bonferroni over ``tests``."""
+        return min(0.0, math.log10(max(tests, 1)) + math.log10(max(self.sf(z), 1e-300)))
+
+    def threshold(self, alpha: float, tests: int) -> float:
+        """The |z| at which the Bonferroni p-value is ``alpha`` (∞ when none reaches it)."""
+        target = math.log(alpha / max(tests, 1))
+
+        def excess(z: float) -> float:
+            return math.log(max(self.sf(z), 1e-300)) - target
+
+        if excess(_LARGEST_Z) > 0:
+            return math.inf
+        return float(optimize.brentq(excess, 0.0, _LARGEST_Z, xtol=1e-4))
+
+
+def _normal_mass(grid: np.ndarray, gap: np.ndarray) -> np.ndarray:
+    """Per row, the N(0, 1) mass of {x ≥ 0 : gap(x) > 0}, gap linear between the grid points; beyond the
+    last point the sign of the last value holds."""
+    low, high = gap[:, :-1], gap[:, 1:]
+    left, right = grid[:-1], grid[1:]
+    crossing = left + (right - left) * low / np.where(low != high, low - high, 1.0)
+    start = np.where(low > 0, left, np.where(high > 0, crossing, right))
+    end = np.where(high > 0, right, np.where(low > 0, crossing, left))
+    mass = np.sum(np.maximum(stats.norm.sf(start) - stats.norm.sf(end), 0.0), axis=1)
+    return mass + np.where(gap[:, -1] > 0, stats.norm.sf(grid[-1]), 0.0)
+
+
+def _expand(block_weights: np.ndarray, block: int, length: int) -> np.ndarray:
+    expanded = np.zeros(length)
+    expanded[: len(block_weights) * block] = np.repeat(block_weights, block)
+    return expanded
+
+
+def _block_sums(values: np.ndarray, block: int) -> np.ndarray:
+    count = len(values) // block
+    return values[: count * block].reshape(count, block).sum(axis=1)
+
+
+def _active_sets(fit: ResidualFit, weights: np.ndarray) -> tuple[_ActiveSets, np.ndarray]:
+    """The fitter's GLS step for ``fit`` (its parameters, τ and covariance across τ) with V per unit of
+    each parameter for ``weights``; and the Cholesky factor of that covariance."""
+    model = fit.noise.model
+    units = statistic_units(weights, model.flicker_d)
+    ar = model.ar_coefficients
+    gain = 1.0 / (1.0 - sum(ar)) ** 2 if ar else 1.0
+    columns, per_unit = [], []
+    for parameter in fit.result.parameters:
+        component = COMPONENT_OF_PARAMETER[parameter]
+        columns.append(term_allan_variance(component, fit.sizes, model.flicker_d, ar_coefficients=ar))
+        per_unit.append(units.of_parameter(parameter) * (gain if component == "ar" else 1.0))
+    cholesky = np.linalg.cholesky(np.asarray(fit.result.tau_covariance, dtype=np.float64))
+    whitened = np.linalg.solve(cholesky, np.column_stack(columns))
+    return _ActiveSets.from_design(whitened, np.array(per_unit)), cholesky
+
+
+def model_curve(fit: ResidualFit, noise: FittedNoise) -> np.ndarray:
+    """The Allan variance of ``noise`` at the τ of ``fit``, through the fit's own columns (its terms)."""
+    model = noise.model
+    columns = [
+        getattr(model, parameter)
+        * term_allan_variance(
+            COMPONENT_OF_PARAMETER[parameter],
+            fit.sizes,
+            model.flicker_d,
+            ar_coefficients=model.ar_coefficients,
+        )
+        for parameter in fit.result.parameters
+    ]
+    return np.sum(columns, axis=0)
+
+
+def _allan_parts(
+    fit: ResidualFit,
+    length: int,
+    sums: tuple[np.ndarray, np.ndarray],
+    direction: np.ndarray,
+    rng: np.random.Generator,
+    curve: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(constant, linear, square) of the Allan-variance vectors of the replicates at L = x √V (unwhitened,
+    module docstring): ``sums`` the block sums of e⊥* and of e* = e⊥* + (L*/V) u (rows: replicates),
+    ``direction`` those of h / √V; the short τ are drawn given the long ones of e*, about ``curve``, the
+    generating model's Allan variance."""
+    first = long_tau_start(fit, length)
+    block, levels = int(fit.sizes[first]), len(fit.sizes) - first
+    orthogonal, whole = sums
+    sampler = AllanVarianceSampler.from_fit(fit, length)
+    long_e = octave_products(whole, whole, levels, block)
+    short = curve[:first] + rng.standard_normal((len(whole), first)) @ sampler.short_factor.T
+    short = short + (long_e - curve[first:]) @ sampler.regression.T
+    zeros = np.zeros((len(whole), first))
+    constant = np.hstack((short, octave_products(orthogonal, orthogonal, levels, block)))
+    linear = np.hstack((zeros, 2.0 * octave_products(orthogonal, direction, levels, block)))
+    square = np.concatenate((zeros[0], octave_products(direction, direction, levels, block)))
+    return constant, linear, np.broadcast_to(square, constant.shape)
+
+
+def trend_reference(
+    fit: ResidualFit,
+    length: int,
+    block_weights: np.ndarray,
+    projection: float,
+    regressor_sums: np.ndarray | None = None,
+    replicates: int = REPLICATES,
+    generating: FittedNoise | None = None,
+) -> TrendReference:
+    """The bootstrap reference of L/√V(θ̂) (module docstring) for the weights ``block_weights`` (the
+    per-sample weight on each block of ``fit.sizes[first]`` samples, ``first`` the first long τ) under
+    ``fit``, the fit of r = e (``regressor_sums`` None) or of r = e − (L/I) g (``regressor_sums`` the
+    block sums of g); ``projection`` is the observed L (it seeds the generator). The replicates are drawn
+    from ``generating`` (default: the fit's own noise), refitted and studentized as ``fit`` was."""
+    first = long_tau_start(fit, length)
+    if first >= len(fit.sizes):
+        raise ValueError(f"length={length!r}: no long τ to draw the trend reference from")
+    block = int(fit.sizes[first])
+    weights = _expand(np.asarray(block_weights, dtype=np.float64), block, length)
+    sets, cholesky = _active_sets(fit, weights)
+    noise = fit.noise if generating is None else generating
+    variance = statistic_units(weights, noise.model.flicker_d).variance(noise_variances(noise))
+    covariance = _block_sums(covariance_product(noise, weights), block)  # Cov(block sums, L)
+    direction = covariance
+    if regressor_sums is not None:
+        direction = covariance - variance / float(np.dot(block_weights, regressor_sums)) * regressor_sums
+    rng = bootstrap_generator(TREND_STREAM, [fit.observed, np.array([projection, variance])])
+    whole = simulate_block_sum_draws(noise, length, block, replicates, rng)
+    orthogonal = whole - np.outer(whole @ block_weights / variance, covariance)
+    root = math.sqrt(variance)
+    curve = fit.model if generating is None else model_curve(fit, noise)
+    constant, linear, square = _allan_parts(fit, length, (orthogonal, whole), direction / root, rng, curve)
+    whiten = np.linalg.inv(cholesky).T
+    return TrendReference(variance, sets, constant @ whiten, linear @ whiten, square @ whiten)
