@@ -130,6 +130,11 @@ def _allan_variance_eq2(record: tuple[int, ...], samples_per_bin: int) -> Fracti
     return sum(((b - a) ** 2 for a, b in itertools.pairwise(means)), Fraction(0)) / (2 * (bins - 1))
 
 
+#: Relative agreement of the package's Allan variance with eq. (2) in fractions: rounding (the measured
+#: figure depends on the platform, so the evidence states this bound).
+_PACKAGE_AGREES = 1e-13
+
+
 def _check_eq2_allan_definition(record: tuple[int, ...] = EXAMPLE_RECORD) -> Verdict:
     sizes = [1, 2, 3, 4]
     exact = [_allan_variance_eq2(record, m) for m in sizes]
@@ -137,13 +142,14 @@ def _check_eq2_allan_definition(record: tuple[int, ...] = EXAMPLE_RECORD) -> Ver
         np.array(record, dtype=float), 1.0, np.array(sizes, dtype=float), estimator="non-overlapping"
     ).avar
     worst = max(abs(float(e) - p) / float(e) for e, p in zip(exact, package, strict=True))
-    if worst < 1e-13:
+    if worst < _PACKAGE_AGREES:
         return Verdict(
             Status.VERIFIED,
             f"Record {list(record)}: eq. (2) in exact fractions gives "
             + ", ".join(f"τ = {m}: {e}" for m, e in zip(sizes, exact, strict=True))
-            + f"; allan.allan_variance(non-overlapping) agrees to {worst:.1e}. Same normalisation "
-            "1/(2(N−1)) over N disjoint bins as TIM 2014 eq. (20) (M bins there).",
+            + "; allan.allan_variance(non-overlapping) agrees to within "
+            + f"{_PACKAGE_AGREES:.0e} (relative). Same normalisation 1/(2(N−1)) over N disjoint bins as "
+            "TIM 2014 eq. (20) (M bins there).",
         )
     return Verdict(Status.REFUTED, f"package and eq. (2) differ by {worst:.3g} (relative)")
 

@@ -214,6 +214,11 @@ def _check_eq8_eq9_moving_average(record: tuple[int, ...] = EXAMPLE_RECORD) -> V
     return Verdict(Status.REFUTED, "prediction.moving_average_forecast differs from eq. (8)–(9)")
 
 
+#: Literal and fast forecasts agree to rounding (measured about 1e-16; the figure depends on the
+#: platform's BLAS, so the evidence states this bound).
+_FORECASTS_AGREE = 1e-12
+
+
 def _check_kalman_cost(calibration: int = 1000, horizon: int = 1000) -> Verdict:
     total = calibration + horizon
     state = total + 1  # f_1 … f_total and the bias (sample-mean) state
@@ -222,21 +227,23 @@ def _check_kalman_cost(calibration: int = 1000, horizon: int = 1000) -> Verdict:
     multiply_adds = sum(j * (j - 1) for j in range(2, total + 1))
     rng = np.random.default_rng(2012)
     data = np.cumsum(rng.standard_normal(60)) * 0.1
-    literal = kalman_forecast(data, 20)
-    fast = fast_kalman_forecast(data, 20)
-    difference = float(np.max(np.abs(literal.mean - fast.mean)))
-    if state > 1000 and difference < 1e-9:
+    difference = max(
+        float(np.max(np.abs(kalman_forecast(data, 20, white_variance=v).mean - fast.mean)))
+        for v in (0.0, 0.5)
+        for fast in [fast_kalman_forecast(data, 20, white_variance=v)]
+    )
+    if state > 1000 and difference < _FORECASTS_AGREE:
         return Verdict(
             Status.QUALIFIED,
             f"True of the growing-state filter: for the §V-C runs ({calibration} + {horizon} samples) the "
             f"state reaches {state} variables, the covariance {state**2:,} numbers, and the time updates "
             f"alone need {multiply_adds:,} multiply-adds (Σ j(j−1), j ≤ {total}): O(n³). Not true of the "
-            "prediction: without white noise the same forecast costs O((n + h) log(n + h)) in "
-            f"fast_prediction (literal and fast forecasts agree to {difference:.1e} on a 60 + 20 example). "
-            "With white measurement noise the package has no fast exact form, so the cost of that case "
-            "is not decided here.",
+            "prediction: fast_prediction gives the same forecast in O((n + h) log(n + h)) without white "
+            "noise and, with white measurement noise, in O(n log² n + (n + h) log(n + h)) by the "
+            "generalized Schur recursion (literal and fast forecasts agree to within "
+            f"{_FORECASTS_AGREE:.0e} on a 60 + 20 example, σ_v² = 0 and 0.5).",
             corrected="the growing-state Kalman formulation is computationally demanding (O(n³)); the "
-            "forecast it computes is not (O(n log n) without white noise)",
+            "forecast it computes is not (O(n log n) without white noise, O(n log² n) with it)",
         )
     return Verdict(Status.FAILED, f"literal and fast Kalman forecasts differ by {difference:.3g}")
 

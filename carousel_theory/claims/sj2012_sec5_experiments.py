@@ -169,13 +169,18 @@ def _filter_population(bias_prior: str) -> dict[str, float]:
     return {m: population_metrics(CALIBRATION, HORIZON, m, model)[1] for m in METHODS}
 
 
+#: The diffuse KF's weights and the dense GLS predictor's agree to rounding (measured about 5e-16; the
+#: figure itself depends on the platform's BLAS, so the evidence states this bound).
+_WEIGHTS_AGREE = 1e-12
+
+
 def _check_kf_optimal() -> Verdict:
     gls = _generalised_least_squares_weights(60, 20, 0.5)
     diffuse_weights = prediction_weights(60, 20, "KF", BiasModel(bias_prior="diffuse"))
     gap = float(np.max(np.abs(gls - diffuse_weights)))
     plug_in, diffuse = _filter_population("calibration-mean"), _filter_population("diffuse")
     lowest_of_three = plug_in["KF"] < min(plug_in["MA"], plug_in["CM"])
-    if gap > 1e-9 or not lowest_of_three or not diffuse["KF"] < plug_in["KF"]:
+    if gap > _WEIGHTS_AGREE or not lowest_of_three or not diffuse["KF"] < plug_in["KF"]:
         return Verdict(Status.FAILED, f"GLS gap {gap:.3g}; E RSSE² plug-in {plug_in}, diffuse {diffuse}")
     return Verdict(
         Status.QUALIFIED,
@@ -184,7 +189,8 @@ def _check_kf_optimal() -> Verdict:
         + ", ".join(f"{m} {plug_in[m]:.5g}" for m in METHODS)
         + f": lowest of the three. It is not the minimum among linear unbiased predictors: the KF with "
         f"the bias as an unknown (diffuse) state reaches {diffuse['KF']:.5g}; its weights equal the "
-        f"generalised-least-squares predictor (dense GLS, 60 + 20 samples, to {gap:.1e}). 'In theory "
+        f"generalised-least-squares predictor (dense GLS, 60 + 20 samples, to within "
+        f"{_WEIGHTS_AGREE:.0e}). 'In theory "
         "minimises the error variance' holds for that filter, not for the one the paper ran.",
         corrected="the KF that treats the bias as an unknown state (diffuse prior) minimises E Σe² among "
         "linear unbiased predictors; the plug-in KF of Table I does not, though its E Σe² is still the "
