@@ -145,7 +145,7 @@ def test_uncorrelated_increments_are_detected(monkeypatch):
 
 
 def test_a_wrong_fast_forecast_is_detected(monkeypatch):
-    def calibration_mean(data, horizon):
+    def calibration_mean(data, horizon, white_variance=0.0):
         return type("Forecast", (), {"mean": calibration_mean_forecast(data, horizon)})()
 
     monkeypatch.setattr(sj2012_sec4_predictors, "fast_kalman_forecast", calibration_mean)
