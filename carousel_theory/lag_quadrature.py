@@ -50,7 +50,7 @@ evaluated once on their union and gathered by the run's offset. Everything is el
 each row is reduced in its own order, so each pair's sum and bound are, bit for bit, those of the pair
 alone (:func:`counted_square_sum` is the batch of one). A lag's nine products w_q H(q − δ) are added
 in the ramps' order on every path (:func:`_ramp_sum`, and the sparse rows of the gathers below), so
-that its c does not depend on how its H was gathered.
+that its c does not depend on how its H was gathered beyond the rounding of a fused multiply-add.
 
 What does not depend on the model's variances or its d — the plans, the partition, the union of the
 exact lags' integer arguments and, for each lag, its nine weights at the columns of its arguments (a
@@ -486,7 +486,8 @@ class _Gathered:
     each lag holds the weights w_q of its nine ramps at the columns of their arguments q − δ (a
     structure of the pairs alone, kept by :class:`PairBatch`). :meth:`values` is the matrix times H at
     the arguments: each row summed in the ramps' order, as :func:`_ramp_sum` sums the direct nine-term
-    products, so that each value is, bit for bit, the direct nine-term sum of the same H."""
+    products, so that each value is the direct nine-term sum of the same H (bit for bit where the
+    platform's sparse product does not fuse its multiply-adds; to a rounding of Σ|w_q H| where it does)."""
 
     arguments: np.ndarray
     matrix: sparse.csr_array
@@ -537,14 +538,6 @@ def _tabulated_gather(pairs: _Pairs, owner: np.ndarray, lags: np.ndarray) -> _Ga
     return _Gathered.of(keys.astype(np.float64), index, pairs.weights[owner])
 
 
-def _tabulated_nine_term_sum(
-    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
-) -> np.ndarray:
-    """:func:`_nine_term_sum` at integer ``lags`` sorted within each pair, H evaluated once on the union of
-    their arguments (:func:`_tabulated_gather`; element by element, so each value is the direct one)."""
-    return _tabulated_gather(pairs, owner, lags).values(lag_model)
-
-
 def _direct_values(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray) -> np.ndarray:
     """c at lags of narrow pairs: the 1/f part by :func:`_direct_flicker`, the finite part by the nine-term
     sum."""
@@ -565,18 +558,17 @@ def _direct_values(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: 
 
 
 def _batch_values(
-    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray, *, tabulated: bool = False
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
-    """(c, bound on its error) at ``lags`` of the pairs ``owner``: the Newton series in the far tail;
-    elsewhere the nine-term sum of H, or for narrow pairs the direct Σ_u W(u) γ_z(δ + u). ``tabulated``:
-    the lags are integers, sorted within each pair, and H is tabulated once for all of them."""
+    """(c, bound on its error) at any ``lags`` of the pairs ``owner``, without a :class:`PairBatch`: the
+    Newton series in the far tail; elsewhere the nine-term sum of H, or for narrow pairs the direct
+    Σ_u W(u) γ_z(δ + u)."""
     parts = _partition(pairs, lag_model, owner, lags)
     near = parts[3]
     if not np.any(near):
         return _parted_values(pairs, lag_model, owner, lags, parts, None)
-    nine_term_sum = _tabulated_nine_term_sum if tabulated else _nine_term_sum
     return _parted_values(
-        pairs, lag_model, owner, lags, parts, nine_term_sum(pairs, lag_model, owner[near], lags[near])
+        pairs, lag_model, owner, lags, parts, _nine_term_sum(pairs, lag_model, owner[near], lags[near])
     )
 
 
@@ -680,21 +672,6 @@ def _block_layout(plans: Sequence[tuple[np.ndarray, np.ndarray]]) -> tuple[np.nd
     nodes = (firsts[:, None] + offsets).ravel()
     block = np.repeat(np.arange(len(blocks)), GAUSS_POINTS)
     return nodes, weights.ravel(), block, block_owner, ends, log_norms
-
-
-#: Gauss nodes are evaluated this many at a time, so that the (nodes × 9) temporaries stay in cache.
-_CHUNK = 1 << 14
-
-
-def _chunked_values(
-    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_batch_values` over consecutive chunks of ``lags`` (element by element, so the same values)."""
-    values, errors = np.empty(len(lags)), np.empty(len(lags))
-    for start in range(0, len(lags), _CHUNK):
-        part = slice(start, start + _CHUNK)
-        values[part], errors[part] = _batch_values(pairs, lag_model, owner[part], lags[part])
-    return values, errors
 
 
 @dataclass(frozen=True)
