@@ -44,11 +44,12 @@ Each half runs at half the final test's rate (Bonferroni); the reported p is 2 m
 (:class:`AllanVarianceSampler`: the long τ exactly from block sums, the short τ Gaussian given them).
 Every bootstrap draws from its own generator (:func:`bootstrap_generator`), seeded with BOOTSTRAP_SEED, a
 stream number per test and a digest of the observed values rounded to DIGEST_BITS significant bits: a
-recording gets the same decisions on any numerical platform, and different recordings get independent
-replicates. The rounding is what makes the first true across machines: a change in the last bits of an
+recording gets the same replicates on any numerical platform, and different recordings get independent
+ones. The rounding is what makes the first true across machines: a change in the last bits of an
 observed value (another summation order in NumPy or BLAS, another CPU's kernels) leaves the digest and
 the replicates as they were, unless a value sits within those bits of a rounding midpoint (a chance of
-about 2^(DIGEST_BITS − 52) per last-bit change). The digest matters: with one fixed
+about 2^(DIGEST_BITS − 52) per last-bit change). The decisions then differ across platforms only where a
+statistic sits within rounding of its threshold. The digest matters: with one fixed
 stream the critical value (the largest of the B replicates) would be the same draw for every recording,
 and the test's size over recordings would be one minus that draw's quantile, a random number of mean
 1/(B + 1) but as likely as not far from it (at B = 39, 9 of 43 clean one-hour records rejected at a
