@@ -132,11 +132,10 @@ def _clocked(module: object, name: str, spent: dict[str, float]) -> Iterator[Non
 
 
 def _breakdown(y: np.ndarray, components: tuple[str, ...]) -> None:
-    """Where the fit's CPU time goes (a second fit of the same axis, the lag plans' and the pair batches'
-    caches emptied first so that planning is counted as on a first call; modules already imported): the
+    """Where the fit's CPU time goes (a second fit of the same axis, the pair batches'
+    cache emptied first so that planning is counted as on a first call; modules already imported): the
     τ-covariances, and within them the pairs' structure (plans, partitions, gathers; once per record),
     the terms' values at the exact lags and Gauss nodes (each covariance), and the sums with the rest."""
-    lag_quadrature._plan.cache_clear()
     lag_quadrature.pair_batch.cache_clear()
     spent: dict[str, float] = {}
     with contextlib.ExitStack() as stack:

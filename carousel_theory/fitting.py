@@ -54,6 +54,7 @@ from carousel_theory._validation import (
     check_positive_real,
 )
 from carousel_theory.allan import AllanResult, allan_variance, check_tau_range, with_model_intervals
+from carousel_theory.formulas import formula
 from carousel_theory.increment_sums import squared_rising_factorial_sum
 from carousel_theory.noise_model import NoiseModel, term_allan_variance
 from carousel_theory.progress import progress
@@ -564,8 +565,6 @@ def _bias_variance(model: NoiseModel, length: int) -> float:
     ``rrw_average_var`` at k = 1), 1/f from :func:`carousel_theory.propagation.flicker_averaged_bin_variance`,
     quantization (a white angle error differenced into the rate) adds 2 f_s² Q²/n², and the AR term
     its long-run variance /n (the leading term; the end correction is O(1/n²))."""
-    from carousel_theory.formulas import formula
-
     n = float(length)
     variance = model.white_variance * float(formula("white_average_var").numeric(N=length))
     variance += model.rrw_variance * float(formula("rrw_average_var").numeric(N=length, k=1))

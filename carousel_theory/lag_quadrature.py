@@ -5,7 +5,7 @@ model's increment autocovariance (:mod:`carousel_theory.increment_sums`): the fi
 random walk, quantization, AR) through one finite γ_z, the 1/f term in closed form. Each H is smooth away
 from x = −2, so c is smooth away from the breakpoints b_q = q + 2; N_ij is linear between 0 and K_j − K_i.
 
-Scheme
+Scheme (the plan of each pair: :mod:`carousel_theory.lag_plan`)
     Exact: every integer lag within ``EXACT_REACH`` (and the AR reach) of a breakpoint.
     Elsewhere: blocks of consecutive lags, each at most ``BLOCK_RATIO`` times its distance to the
     nearest breakpoint (lengths ⌊2^{k/4}⌋, the largest that fits, so that few rules serve every block),
@@ -71,9 +71,7 @@ ulps; the tests hold the whole to the bound plus 1e-11 relative.
 
 from __future__ import annotations
 
-import bisect
 import functools
-import itertools
 import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
@@ -88,6 +86,14 @@ from carousel_theory.increment_sums import (
     flicker_normalisation,
     rising_factorial,
 )
+from carousel_theory.lag_plan import (
+    BLOCK_RATIO,
+    EXACT_REACH,
+    GAUSS_POINTS,
+    LagPlan,
+    plan_pairs,
+    ramp_positions,
+)
 from carousel_theory.noise_model import NoiseModel, ar_increment_reach, increment_autocovariance
 
 __all__ = [
@@ -100,12 +106,6 @@ __all__ = [
     "counted_square_sums",
 ]
 
-#: Nodes of the discrete Gauss rule on each block.
-GAUSS_POINTS = 12
-#: A block is at most this fraction of its distance to the nearest breakpoint.
-BLOCK_RATIO = 0.5
-#: Lags within this distance of a breakpoint (plus the AR reach) are summed one by one.
-EXACT_REACH = 32
 #: Beyond FAR support widths from the support, c comes from the Newton series of γ_z (the nine-term sum
 #: of H would lose about FAR⁴ ulps there).
 FAR = 4
@@ -166,18 +166,6 @@ def _cubic(lag_model: LagModel, x: np.ndarray) -> np.ndarray:
 # --- the pair's geometry ------------------------------------------------------------------------------
 
 
-@functools.lru_cache(maxsize=4096)
-def ramp_positions(m_i: int, m_j: int) -> tuple[tuple[int, int], ...]:
-    """(q, w) with W_ij(−δ) = Σ w R₃(q − δ): q = −p_αβ, merged where positions coincide (module text of
-    :mod:`carousel_theory.tau_covariance`)."""
-    merged: dict[int, int] = {}
-    for alpha, w_alpha in enumerate((1, -2, 1)):
-        for beta, w_beta in enumerate((1, -2, 1)):
-            q = -(2 - 2 * m_i + alpha * m_i + beta * m_j)
-            merged[q] = merged.get(q, 0) + w_alpha * w_beta
-    return tuple((q, w) for q, w in sorted(merged.items()) if w)
-
-
 @dataclass(frozen=True)
 class _Pair:
     positions: np.ndarray
@@ -203,107 +191,6 @@ def _gauss_rule(length: int, points: int) -> tuple[np.ndarray, np.ndarray, float
     nodes, vectors = np.linalg.eigh(jacobi)
     weights = length * vectors[0] ** 2
     return nodes + (length - 1) / 2.0, weights, math.log(length) + float(np.sum(np.log(beta)))
-
-
-#: Block lengths: ⌊2^{k/4}⌋, k = 0, 1, … (quarter octaves, so that a block is close to BLOCK_RATIO × its
-#: distance while the Gauss rules stay few and cached).
-_BLOCK_LENGTHS = sorted({math.floor(2.0 ** (k / 4.0)) for k in range(4 * 62)})
-
-
-def _block_length(distance: int, remaining: int) -> int:
-    """The largest of :data:`_BLOCK_LENGTHS` ≤ min(BLOCK_RATIO × distance, remaining) (at least 1)."""
-    allowed = max(1, min(int(BLOCK_RATIO * distance), remaining))
-    return _BLOCK_LENGTHS[bisect.bisect_right(_BLOCK_LENGTHS, allowed) - 1]
-
-
-@functools.lru_cache(maxsize=4096)
-def _growth(distance: int) -> tuple[list[int], list[int], list[int]]:
-    """(offset, length, end offset) of the blocks grown from ``distance`` away from a breakpoint with
-    nothing to stop them, out to 2⁶² (a record's blocks are a prefix of these, then a few clipped ones)."""
-    offsets, lengths, ends, x = [], [], [], 0
-    while distance + x < 1 << 62:
-        length = _block_length(distance + x, 1 << 62)
-        offsets.append(x)
-        lengths.append(length)
-        x += length
-        ends.append(x)
-    return offsets, lengths, ends
-
-
-def _grow(start: int, stop: int, breakpoint: int, direction: int) -> list[tuple[int, int]]:
-    """Blocks (first, length) covering start … stop (direction +1 away from a breakpoint on the left,
-    −1 away from one on the right): lengths from :data:`_BLOCK_LENGTHS`, ≤ BLOCK_RATIO × distance and
-    ≤ what remains."""
-    span = abs(stop - start) + 1
-    offsets, lengths, ends = _growth(abs(start - breakpoint))
-    whole = bisect.bisect_right(ends, span)
-    pieces = zip(offsets[:whole], lengths[:whole], strict=True)
-    if direction > 0:
-        blocks = [(start + offset, length) for offset, length in pieces]
-    else:
-        blocks = [(start - offset - length + 1, length) for offset, length in pieces]
-    x = start + direction * (ends[whole - 1] if whole else 0)
-    remaining = span - abs(x - start)
-    while remaining > 0:
-        length = _block_length(abs(x - breakpoint), remaining)
-        blocks.append((x if direction > 0 else x - length + 1, length))
-        x += direction * length
-        remaining -= length
-    return blocks
-
-
-def _segment_blocks(first: int, last: int, left: int | None, right: int | None) -> list[tuple[int, int]]:
-    """Blocks growing away from the breakpoints on either side of first … last, meeting half-way."""
-    middle = last if right is None else first - 1 if left is None else (left + right) // 2
-    middle = min(max(middle, first - 1), last)
-    blocks: list[tuple[int, int]] = []
-    if left is not None and middle >= first:
-        blocks += _grow(first, middle, left, 1)
-    if right is not None and middle < last:
-        blocks += _grow(last, middle + 1, right, -1)
-    return blocks
-
-
-@functools.lru_cache(maxsize=1024)
-def _plan(m_i: int, m_j: int, K_i: int, K_j: int, reach: int) -> tuple[np.ndarray, np.ndarray]:
-    """(integer lags summed one by one, Gauss blocks as rows (first, length)) covering −(K_i − 1) … K_j − 1
-    (cached: the refits of one record plan the same pairs)."""
-    low, high = -(K_i - 1), K_j - 1
-    breakpoints = sorted({q + 2 for q, _ in ramp_positions(m_i, m_j)})
-    zone = max(EXACT_REACH, reach + 8, GAUSS_POINTS + 2)
-    exact: list[tuple[int, int]] = []
-    blocks: list[tuple[int, int]] = []
-    cuts = sorted({low, high + 1, 0, K_j - K_i} | {b + s for b in breakpoints for s in (-zone, zone + 1)})
-    for start, stop in itertools.pairwise(cuts):
-        first, last = max(start, low), min(stop - 1, high)
-        if first > last:
-            continue
-        below = bisect.bisect_left(breakpoints, first)  # breakpoints < first
-        above = len(breakpoints) - bisect.bisect_right(breakpoints, last)  # breakpoints > last
-        left = breakpoints[below - 1] if below else None
-        right = breakpoints[len(breakpoints) - above] if above else None
-        near = min(
-            first - left if left is not None else math.inf, right - last if right is not None else math.inf
-        )
-        if below + above < len(breakpoints) or near <= zone or last - first < 2 * GAUSS_POINTS:
-            exact.append((first, last))
-        else:
-            blocks += _segment_blocks(first, last, left, right)
-    exact += [(f, f + n - 1) for f, n in blocks if n <= 2 * GAUSS_POINTS]
-    large = np.array([(f, n) for f, n in blocks if n > 2 * GAUSS_POINTS], dtype=np.int64).reshape(-1, 2)
-    # The segments between cuts are disjoint and the blocks partition theirs, so the exact ranges are
-    # disjoint: sorted by their first lag, they concatenate into the sorted lags.
-    lags = _concatenated_ranges(np.array(sorted(exact), dtype=np.int64).reshape(-1, 2))
-    lags.setflags(write=False)
-    large.setflags(write=False)
-    return lags, large
-
-
-def _concatenated_ranges(ranges: np.ndarray) -> np.ndarray:
-    """The integers first … last of each row (first, last) of ``ranges``, one range after the other."""
-    lengths = ranges[:, 1] - ranges[:, 0] + 1
-    starts = np.cumsum(lengths) - lengths  # where each range begins in the result
-    return np.repeat(ranges[:, 0] - starts, lengths) + np.arange(int(lengths.sum()), dtype=np.int64)
 
 
 # --- bounds and the far-tail series -----------------------------------------------------------------
@@ -655,13 +542,12 @@ def _merged_runs(firsts: np.ndarray, lasts: np.ndarray) -> tuple[np.ndarray, np.
     return firsts[starts], reach[np.concatenate((starts[1:] - 1, [len(firsts) - 1]))]
 
 
-def _block_layout(plans: Sequence[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, ...]:
+def _block_layout(plan: LagPlan) -> tuple[np.ndarray, ...]:
     """(node lags, node weights, node's block, block's pair, block ends, log h_p) of every pair's Gauss
     blocks (one rule per distinct block length)."""
-    blocks = np.concatenate([rows for _, rows in plans])
+    blocks = plan.blocks
     if not len(blocks):
         return ()
-    block_owner = np.repeat(np.arange(len(plans)), [len(rows) for _, rows in plans])
     distinct, which = np.unique(blocks[:, 1], return_inverse=True)
     rules = [_gauss_rule(int(length), GAUSS_POINTS) for length in distinct.tolist()]
     offsets = np.stack([rule[0] for rule in rules])[which]
@@ -671,15 +557,16 @@ def _block_layout(plans: Sequence[tuple[np.ndarray, np.ndarray]]) -> tuple[np.nd
     ends = np.column_stack((firsts, firsts + blocks[:, 1] - 1))
     nodes = (firsts[:, None] + offsets).ravel()
     block = np.repeat(np.arange(len(blocks)), GAUSS_POINTS)
-    return nodes, weights.ravel(), block, block_owner, ends, log_norms
+    return nodes, weights.ravel(), block, plan.block_owner, ends, log_norms
 
 
 @dataclass(frozen=True)
 class PairBatch:
     """The pairs of one covariance with all that does not depend on the model's variances or its 1/f
-    order: the exact lags and the Gauss blocks of :func:`_plan` (for the finite terms' ``reach``), the
-    counts N there, how c is taken at each (:func:`_partition`: the far-tail series where the finite
-    terms' c is exactly 0, every argument of their γ_z beyond their reach) and the gathers of H."""
+    order: the exact lags and the Gauss blocks of :func:`~carousel_theory.lag_plan.plan_pairs` (for the
+    finite terms' ``reach``), the counts N there, how c is taken at each (:func:`_partition`: the
+    far-tail series where the finite terms' c is exactly 0, every argument of their γ_z beyond their
+    reach) and the gathers of H."""
 
     pairs: _Pairs
     reach: int
@@ -722,10 +609,9 @@ class PairBatch:
     def of(cls, pairs: Sequence[tuple[int, int, int, int]], reach: int, flicker: bool) -> PairBatch:
         """The batch of (m_i, m_j, K_i, K_j) ``pairs`` for terms reaching ``reach`` lags, with 1/f or not."""
         batch = _Pairs.of([_make_pair(*pair) for pair in pairs])
-        plans = [_plan(*pair, reach) for pair in pairs]
-        lags = np.concatenate([exact for exact, _ in plans]).astype(np.float64)
-        owner = np.repeat(np.arange(len(pairs)), [len(exact) for exact, _ in plans])
-        layout = _block_layout(plans)
+        plan = plan_pairs(pairs, reach)
+        lags, owner = plan.lags.astype(np.float64), plan.lag_owner
+        layout = _block_layout(plan)
         if not layout:
             empty, none = np.zeros(0), np.zeros(0, dtype=np.int64)
             layout = (empty, empty, none, none, np.zeros((0, 2)), empty)

@@ -29,7 +29,6 @@ from hypothesis import strategies as st
 
 from carousel_theory.increment_sums import flicker_increment_difference
 from carousel_theory.lag_quadrature import (
-    BLOCK_RATIO,
     GAUSS_POINTS,
     LagModel,
     PairBatch,
@@ -37,12 +36,10 @@ from carousel_theory.lag_quadrature import (
     _gauss_rule,
     _make_pair,
     _nine_term_sum,
-    _plan,
     _values,
     combined_sums,
     counted_square_sum,
     counted_square_sums,
-    ramp_positions,
     term_values,
 )
 from carousel_theory.noise_model import NoiseModel
@@ -213,34 +210,6 @@ def test_direct_flicker_from_shared_integers_is_the_pairs_own(d, m_i, ratio, fir
     integers = flicker_increment_difference(np.arange(reach + 1, dtype=np.float64), d)
     shared = _direct_flicker(m_i, m_j, lag_model, lags, integers)
     np.testing.assert_array_equal(shared, _direct_flicker(m_i, m_j, lag_model, lags))
-
-
-@given(
-    m_i=st.integers(min_value=1, max_value=3000),
-    m_j=st.integers(min_value=1, max_value=3000),
-    length=st.integers(min_value=2_000, max_value=2_000_000),
-    reach=st.integers(min_value=3, max_value=200),
-)
-def test_plan_covers_every_lag_once(m_i, m_j, length, reach):
-    """The exact lags (sorted) and the Gauss blocks cover −(K_i − 1) … K_j − 1, each lag once; no block
-    reaches a breakpoint nor grows beyond BLOCK_RATIO times its distance to the nearest one."""
-    m_i, m_j = min(m_i, m_j), max(m_i, m_j)
-    assume(3 * m_j <= length)
-    K_i, K_j = length - 2 * m_i + 1, length - 2 * m_j + 1
-    lags, blocks = _plan(m_i, m_j, K_i, K_j, reach)
-    low = -(K_i - 1)
-    covered = np.zeros(K_i + K_j - 1, dtype=np.int64)
-    np.add.at(covered, lags - low, 1)
-    for first, size in blocks.tolist():
-        covered[first - low : first + size - low] += 1
-    assert np.all(covered == 1)
-    assert np.all(np.diff(lags) > 0)
-    breakpoints = np.array([q + 2 for q, _ in ramp_positions(m_i, m_j)])
-    for first, size in blocks.tolist():
-        distance = np.minimum(np.abs(breakpoints - first), np.abs(breakpoints - (first + size - 1)))
-        inside = (breakpoints >= first) & (breakpoints <= first + size - 1)
-        assert not np.any(inside)
-        assert size <= max(1, BLOCK_RATIO * int(distance.min()))
 
 
 @pytest.mark.parametrize("with_ar", [False, True])
