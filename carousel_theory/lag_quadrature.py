@@ -516,10 +516,26 @@ def _direct_flicker(
             gamma = integers[np.abs(reached)]
         result[integral] = np.correlate(gamma, window, "valid")[(points - first).astype(np.int64)]
     if not np.all(integral):
-        offsets = np.arange(-(2 * m_i - 2), 2 * m_j - 1, dtype=np.float64)
-        arguments = np.abs(lags[~integral][:, None] + offsets[None, :])
-        result[~integral] = flicker_increment_difference(arguments, d) @ window
+        result[~integral] = _outside_flicker(lags[~integral], m_i, m_j, d, window)
     return lag_model.flicker_variance * result
+
+
+def _outside_flicker(lags: np.ndarray, m_i: int, m_j: int, d: float, window: np.ndarray) -> np.ndarray:
+    """Σ_u W(u) γ_z(δ + u) at lags δ outside the support (every δ + u of one sign, |δ + u| ≥ 1), unit σ_w²:
+    γ_z at the run of arguments x₀, x₀ + 1, … (x₀ the nearest, :meth:`_Pairs.nearest`) from γ_z(x₀) and
+    the ratio γ_z(x + 1)/γ_z(x) = (x + d − 1)/(x + 2 − d) (Γ(x + d − 1)/Γ(x + 2 − d) up one step), a
+    cumulative product: the magnitudes fall along the run and each step adds a rounding, so the values
+    carry at most about len(W) ulps; W ≥ 0, so the sum keeps that relative accuracy."""
+    above = lags > 0  # the support −(2m_j − 2) … 2m_i − 2 lies below δ: δ + u > 0 for every u
+    nearest = np.where(above, lags - (2 * m_i - 2), -lags - (2 * m_j - 2))
+    arguments = nearest[:, None] + np.arange(len(window) - 1, dtype=np.float64)
+    gamma = np.empty((len(lags), len(window)))
+    gamma[:, 0] = flicker_increment_difference(nearest, d)
+    gamma[:, 1:] = np.cumprod((arguments + (d - 1.0)) / (arguments + (2.0 - d)), axis=1)
+    gamma[:, 1:] *= gamma[:, :1]
+    # Column k is γ_z(x₀ + k): u = −(2m_i − 2) + k above the support, u = 2m_j − 2 − k below it, where
+    # the weight is the same: W is a correlation of two palindromes, itself a palindrome.
+    return gamma @ window
 
 
 def _make_pair(m_i: int, m_j: int, K_i: int, K_j: int) -> _Pair:

@@ -112,6 +112,33 @@ def test_cross_covariance_against_mpmath(d, m_i, m_j):
             assert abs(value - float(exact)) <= error + 1e-12 * abs(float(exact))
 
 
+@pytest.mark.parametrize("d", ["0.3", "0.5", "0.9"])
+@pytest.mark.parametrize(("m_i", "m_j"), [(1, 1), (3, 12), (20, 80), (64, 64)])
+def test_direct_sum_outside_the_support_against_mpmath(d, m_i, m_j):
+    # c(δ) = Σ_u W(u) γ_z(δ + u) at non-integer δ on either side of the support (the narrow pairs' Gauss
+    # nodes), γ_z(x) = C_d Γ(x + d − 1)/Γ(x + 2 − d) at 30 digits; the package runs the Gamma ratio up the
+    # arguments by its one-step ratio, which may cost about len(W) ulps.
+    lag_model = LagModel.of(NoiseModel(sample_rate=1.0, flicker_variance=1.0, flicker_d=float(d)))
+    above = 2 * m_i - 2 + np.array([1.37, 6.87, 301.62])
+    below = -(2 * m_j - 2) - np.array([1.61, 9.11, 250.5])
+    lags = np.concatenate((above, below))
+    values = _direct_flicker(m_i, m_j, lag_model, lags)
+    window = np.convolve(
+        [min(k + 1, 2 * m_i - 1 - k) for k in range(2 * m_i - 1)][::-1],
+        [min(k + 1, 2 * m_j - 1 - k) for k in range(2 * m_j - 1)],
+    )
+    with mpmath.workdps(30):
+        order = mpmath.mpf(d)
+        scale = mpmath.gamma(3 - 2 * order) / (mpmath.gamma(2 - order) * mpmath.gamma(order - 1))
+        for lag, value in zip(lags.tolist(), values, strict=True):
+            exact = mpmath.fsum(
+                int(w) * scale * mpmath.gamma(x + order - 1) / mpmath.gamma(x + 2 - order)
+                for u, w in enumerate(window.tolist(), start=-(2 * m_i - 2))
+                for x in [abs(mpmath.mpf(lag) + u)]
+            )
+            assert abs(value - float(exact)) <= 1e-13 * abs(float(exact))
+
+
 @pytest.mark.parametrize("d", ["0.1", "0.45", "0.55", "0.95"])
 @pytest.mark.parametrize("j", [15, 40, 1000])
 def test_derivative_lemma(d, j):
