@@ -65,12 +65,13 @@ Allan variances and L, so a recording always gets the same decision.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize, special, stats
 
 from carousel_theory.closed_loop.calibration import (
     TREND_STREAM,
@@ -201,12 +202,19 @@ class TrendReference:
             gradient = gradient + part_gradient[:, np.newaxis] * power.reshape(shape)
         return self.sets.variance(np.asarray(theta), np.asarray(gradient)) / self.variance
 
+    @functools.cached_property
+    def _ratios(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The grid x ≥ 0 and :meth:`ratio` at x and at −x: they do not depend on z, so every z (a
+        threshold search evaluates many) reuses them."""
+        grid = np.arange(0.0, GRID_LIMIT + GRID_STEP / 2, GRID_STEP)
+        return grid, self.ratio(grid), self.ratio(-grid)
+
     def sf(self, z: float) -> float:
         """P*(|z*| > |z|) = mean_k P(x ∈ R_k), x ~ N(0, 1) (module docstring)."""
-        grid = np.arange(0.0, GRID_LIMIT + GRID_STEP / 2, GRID_STEP)
+        grid, *ratios = self._ratios
         total = np.zeros(len(self.constant))
-        for sign in (1.0, -1.0):
-            gap = grid**2 - z * z * self.ratio(sign * grid)  # > 0: rejected
+        for ratio in ratios:
+            gap = grid**2 - z * z * ratio  # > 0: rejected
             total += _normal_mass(grid, gap)
         return float(np.mean(total))
 
@@ -228,14 +236,19 @@ class TrendReference:
 
 def _normal_mass(grid: np.ndarray, gap: np.ndarray) -> np.ndarray:
     """Per row, the N(0, 1) mass of {x ≥ 0 : gap(x) > 0}, gap linear between the grid points; beyond the
-    last point the sign of the last value holds."""
+    last point the sign of the last value holds. Whole intervals take the tail difference of their ends;
+    only the intervals where gap changes sign evaluate the tail at the crossing."""
+    tail = special.ndtr(-grid)
     low, high = gap[:, :-1], gap[:, 1:]
-    left, right = grid[:-1], grid[1:]
-    crossing = left + (right - left) * low / np.where(low != high, low - high, 1.0)
-    start = np.where(low > 0, left, np.where(high > 0, crossing, right))
-    end = np.where(high > 0, right, np.where(low > 0, crossing, left))
-    mass = np.sum(np.maximum(stats.norm.sf(start) - stats.norm.sf(end), 0.0), axis=1)
-    return mass + np.where(gap[:, -1] > 0, stats.norm.sf(grid[-1]), 0.0)
+    whole = (low > 0) & (high > 0)
+    mass = np.sum(np.where(whole, tail[:-1] - tail[1:], 0.0), axis=1)
+    rows, columns = np.nonzero((low > 0) != (high > 0))
+    below, above = low[rows, columns], high[rows, columns]
+    left, right = grid[columns], grid[columns + 1]
+    crossing = special.ndtr(-(left + (right - left) * below / (below - above)))
+    part = np.where(below > 0, tail[columns] - crossing, crossing - tail[columns + 1])
+    np.add.at(mass, rows, np.maximum(part, 0.0))
+    return mass + np.where(gap[:, -1] > 0, tail[-1], 0.0)
 
 
 def _expand(block_weights: np.ndarray, block: int, length: int) -> np.ndarray:
