@@ -5,7 +5,11 @@ statistic L = Σ w_t e_t (weights for e^{−t/τ_c} chosen under the true model 
 and held fixed), the noise refitted jointly on r = e − (L/I) g by the loop's fitter (its covariance
 across τ fixed from a pilot record, as the loop's refits fix it from the view's fit), z = L/√V(θ̂) and p
 from :func:`carousel_theory.closed_loop.studentized.trend_reference` (drawn from that fit, or from it
-with the walk raised). A valid reference rejects at most a fraction α of the records at level α.
+with the walk raised), or the confidence-set p-value of
+:func:`carousel_theory.closed_loop.studentized.boundary_reference` (the largest bootstrap p over the fit
+and the ends of the (1 − γ) intervals of the walk and 1/f variances that reach 0, plus γ; the cases
+marked "confidence-set", drawn on the same records as the case they name). A valid reference rejects at
+most a fraction α of the records at level α.
 
 Commands: ``PYTHONPATH=. python benchmarks/bench_trend_reference.py --case clean --records N --first-seed S``
 (one part file per run in benchmarks/trend_reference_parts/), then ``... --write`` to make
