@@ -99,7 +99,15 @@ NULL_DISTRIBUTIONS = [
     "|---|---|---|",
     "| spikes | max robust abs z about the running median | normal tail, Bonferroni over samples and axes "
     "(the robust scale's bias is removed; tests/test_effects.py checks the tail at 3σ) |",
-    "| steps, warm-up, temperature | GLS linear statistic L = Σ w_t e_t | exactly Gaussian given the noise "
+    "| warm-up, temperature | GLS linear statistic L = Σ w_t e_t (weights constant over blocks of the first "
+    "long τ), studentized z = L/√V(θ̂) by the noise refitted jointly with the regressor | parametric "
+    "bootstrap from the refitted model, every replicate refitted by the fitter's non-negative GLS step "
+    "(L–Allan-variance dependence exact, the Gaussian part of L integrated exactly; "
+    "carousel_theory/closed_loop/studentized.py); the walk and 1/f variances whose (1 − γ) interval "
+    "reaches 0 are searched over the interval's ends and the estimate and γ = 0.1 × the per-test rate is "
+    "added (Berger & Boos 1994, Silvapulle 1996): the bootstrap from a walk fitted at 0 is liberal "
+    "(Andrews 2000). Size and power on whole records: docs/trend_reference_size.md |",
+    "| steps | GLS linear statistic L = Σ w_t e_t | exactly Gaussian given the noise "
     "variances; the variance is taken at its upper (1 − γ) confidence bound V̂ + Φ̄⁻¹(γ) se(V̂) from the "
     "fitter's GLS covariance (delta method) and γ = 0.1 × the detector's rate is added to the p-value "
     "(Berger & Boos 1994). The bound's coverage is asymptotic, and is measured below: se(V̂) is evaluated "

@@ -5,7 +5,11 @@ statistic L = Σ w_t e_t (weights for e^{−t/τ_c} chosen under the true model 
 and held fixed), the noise refitted jointly on r = e − (L/I) g by the loop's fitter (its covariance
 across τ fixed from a pilot record, as the loop's refits fix it from the view's fit), z = L/√V(θ̂) and p
 from :func:`carousel_theory.closed_loop.studentized.trend_reference` (drawn from that fit, or from it
-with the walk raised). A valid reference rejects at most a fraction α of the records at level α.
+with the walk raised), or the confidence-set p-value of
+:func:`carousel_theory.closed_loop.studentized.boundary_reference` (the largest bootstrap p over the fit
+and the ends of the (1 − γ) intervals of the walk and 1/f variances that reach 0, plus γ; the cases
+marked "confidence-set", drawn on the same records as the case they name). A valid reference rejects at
+most a fraction α of the records at level α.
 
 Commands: ``PYTHONPATH=. python benchmarks/bench_trend_reference.py --case clean --records N --first-seed S``
 (one part file per run in benchmarks/trend_reference_parts/), then ``... --write`` to make
@@ -36,7 +40,7 @@ from carousel_theory.closed_loop.residual_model import (
     noise_variances,
     statistic_units,
 )
-from carousel_theory.closed_loop.studentized import trend_reference
+from carousel_theory.closed_loop.studentized import CONFIDENCE_SHARE, boundary_reference, trend_reference
 from carousel_theory.closed_loop.trend_detectors import WarmupDetector
 from carousel_theory.noise_model import NoiseModel
 from carousel_theory.simulate import sample_noise
@@ -59,6 +63,15 @@ class Case:
     time_constant: float = TIME_CONSTANT
     raised_walk: float = 0.0  # the replicates' walk raised to at least this many of its GLS se
     walk_quantiles: int = 0  # replicates' walk at this many quantiles of N(θ̂_q, se²) truncated at 0
+    confidence_level: float = 0.0  # γ > 0: the confidence-set p-value over the boundary nuisances
+    records_of: str = ""  # draw the records of this case (the same records, another reference)
+
+
+#: The warm-up detector's per-test rate in the loop's first iteration: its share of α = 0.01, Bonferroni
+#: over its 8 time constants and 2 axes.
+LOOP_TEST_LEVEL = detector_alpha(DEFAULT_ALPHA, 1, len(DETECTORS)) / (WarmupDetector.grid_size * 2)
+#: γ of the size cases: a tenth of the smallest level reported, so p is valid at each of LEVELS.
+SIZE_CONFIDENCE = 1e-4
 
 
 CASES = {
@@ -110,6 +123,41 @@ CASES = {
             20.0,
             walk_quantiles=8,
         ),
+        Case(
+            "short_small_walk_boundary",
+            f"white + walk 1e-12, 327.68 s, τ_c = 20 s; confidence-set p-value, γ = {SIZE_CONFIDENCE:g}",
+            1e-12,
+            0.0,
+            327.68,
+            20.0,
+            confidence_level=SIZE_CONFIDENCE,
+            records_of="short_small_walk",
+        ),
+        Case(
+            "small_walk_boundary",
+            f"white + walk 1e-12 (0.6 GLS se), 1 h; confidence-set p-value, γ = {SIZE_CONFIDENCE:g}",
+            1e-12,
+            0.0,
+            confidence_level=SIZE_CONFIDENCE,
+            records_of="small_walk",
+        ),
+        Case(
+            "flicker_boundary",
+            f"white + walk (1e-11) + 1/f (5e-8), 1 h; confidence-set p-value, γ = {SIZE_CONFIDENCE:g}",
+            1e-11,
+            5e-8,
+            confidence_level=SIZE_CONFIDENCE,
+            records_of="flicker",
+        ),
+        Case(
+            "flicker_boundary_loop",
+            f"white + walk (1e-11) + 1/f (5e-8), 1 h; confidence-set p-value, γ = {CONFIDENCE_SHARE:g} of"
+            f" the loop's per-test rate",
+            1e-11,
+            5e-8,
+            confidence_level=CONFIDENCE_SHARE * LOOP_TEST_LEVEL,
+            records_of="flicker",
+        ),
     )
 }
 
@@ -149,7 +197,7 @@ def setup(case: Case) -> Setup:
 def one_record(setup: Setup, seed: int, replicates: int, amplitude: float = 0.0) -> tuple[float, float]:
     """(z, p) of one whole simulated record (seed: the case's number and ``seed``), with a warm-up of
     ``amplitude`` (rad/s) and the case's time constant added."""
-    number = list(CASES).index(setup.case.name)
+    number = list(CASES).index(setup.case.records_of or setup.case.name)
     record = sample_noise(setup.model, setup.length, rng=np.random.default_rng([20261123, number, seed]))
     if amplitude:
         record += amplitude * (setup.regressor + setup.shape_mean)
@@ -159,6 +207,12 @@ def one_record(setup: Setup, seed: int, replicates: int, amplitude: float = 0.0)
     fit = fit_residual_model(record, RATE, setup.terms, reference=setup.pilot)
     variance = statistic_units(setup.weights).variance(noise_variances(fit.noise))
     z = projection / math.sqrt(max(variance, 1e-300))
+    if setup.case.confidence_level:
+        level = setup.case.confidence_level
+        bounded = boundary_reference(
+            fit, setup.length, setup.block_weights, projection, level, setup.regressor_sums, replicates
+        )
+        return z, bounded.sf(z)
     walks = _generating_walks(setup.case, fit)
     fitted = fit.noise.model.rrw_variance
     generating = [
@@ -255,11 +309,6 @@ def _size_lines(null: dict[str, dict]) -> list[str]:
         counts = "/".join(str(r) for r in sorted(null[name]["replicates"]))
         lines.append(f"| {case.description} | {len(p)} | {counts} | {' | '.join(cells)} | {ks:.3g} |")
     return lines
-
-
-#: The warm-up detector's per-test rate in the loop's first iteration: its share of α = 0.01, Bonferroni
-#: over its 8 time constants and 2 axes.
-LOOP_TEST_LEVEL = detector_alpha(DEFAULT_ALPHA, 1, len(DETECTORS)) / (WarmupDetector.grid_size * 2)
 
 
 def _power_lines(power: dict[tuple[str, float], dict]) -> list[str]:

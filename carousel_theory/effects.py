@@ -40,9 +40,15 @@ __all__ = [
 ]
 
 
-#: The reference of the GLS trend statistics (steps, warm-up, temperature; closed_loop/detection.py).
+#: The reference of the bias-step scan (closed_loop/detection.py).
 _BOUNDED_REFERENCE = (
     "normal reference with the statistic's variance at its upper confidence bound (Berger–Boos)"
+)
+#: The reference of the joint warm-up and temperature statistics (closed_loop/studentized.py).
+_STUDENTIZED_REFERENCE = (
+    "z studentized by the joint refit, referred to a parametric bootstrap from the refitted model that "
+    "refits every replicate; the walk and 1/f variances whose confidence interval reaches 0 are searched "
+    "over it and its non-coverage added (Berger–Boos)"
 )
 
 
@@ -90,7 +96,7 @@ class Warmup(Effect):
         "max over 8 time constants (log-spaced, T/500 … T/4) of |z| of the GLS projection of the residual "
         "on e^{−t/τ}, the noise refitted jointly with the transient and with a 1/f term when the residual "
         "without the transient asks for one; "
-        + _BOUNDED_REFERENCE
+        + _STUDENTIZED_REFERENCE
         + "; Bonferroni over the grid and the axes"
     )
     enters_model = (
@@ -110,7 +116,7 @@ class Temperature(Effect):
     summary = "bias linear in the temperature column, k (T − T̄)"
     detection = (
         "|z| of the GLS projection of the residual on the temperature column, the noise (rate random walk "
-        "included) refitted jointly with the regressor; " + _BOUNDED_REFERENCE + "; Bonferroni over axes"
+        "included) refitted jointly with the regressor; " + _STUDENTIZED_REFERENCE + "; Bonferroni over axes"
     )
     enters_model = "a term k_axis (T_t − T̄) added to the bias of each axis (k in rad/s per °C)"
     removal = "k by generalised least squares on each axis; subtracted"

@@ -25,7 +25,11 @@ from carousel_theory.closed_loop.residual_model import (
     statistic_units,
 )
 from carousel_theory.closed_loop.studentized import (
+    BoundaryReference,
     _active_sets,
+    _normal_mass,
+    boundary_grid,
+    boundary_reference,
     octave_products,
     trend_reference,
 )
@@ -140,9 +144,10 @@ def _clopper_pearson_low(count: int, records: int) -> float:
     return float(stats.beta.ppf(0.025, count, records - count + 1)) if count else 0.0
 
 
-def _rejections(case: _Case, records: int, level: float) -> int:
+def _rejections(case: _Case, records: int, level: float, confidence_level: float = 0.0) -> int:
     """Rejections at ``level`` over ``records`` whole records: each simulated sample by sample, the noise
-    refitted on r = e − (L/I) g, z = L/√V(θ̂) and p from the bootstrap drawn from that fit."""
+    refitted on r = e − (L/I) g, z = L/√V(θ̂) and p from the bootstrap drawn from that fit (with a
+    ``confidence_level``, the confidence-set p-value over the boundary nuisances)."""
     rng = np.random.default_rng(9)
     information = float(np.dot(case.block_weights, case.regressor_sums))
     rejected = 0
@@ -152,9 +157,14 @@ def _rejections(case: _Case, records: int, level: float) -> int:
         record -= (projection / information) * case.centred
         fit = fit_residual_model(record, RATE, ModelTerms(), reference=case.pilot)
         z = projection / math.sqrt(statistic_units(case.weights).variance(noise_variances(fit.noise)))
-        reference = trend_reference(
-            fit, case.length, case.block_weights, projection, case.regressor_sums, 100
-        )
+        if confidence_level:
+            reference = boundary_reference(
+                fit, case.length, case.block_weights, projection, confidence_level, case.regressor_sums, 100
+            )
+        else:
+            reference = trend_reference(
+                fit, case.length, case.block_weights, projection, case.regressor_sums, 100
+            )
         rejected += reference.sf(z) <= level
     return rejected
 
@@ -186,3 +196,84 @@ def test_trend_reference_has_its_size_on_whole_records_with_a_walk_near_the_boun
     the case in which the earlier reference rejected 0.137 at 0.05, held to the same bounds."""
     records, level = 400, 0.05
     _assert_size(_rejections(_case(2**15, 1e-12, 20.0), records, level), records, level)
+
+
+@pytest.mark.slow
+def test_confidence_set_reference_is_not_liberal_with_a_walk_near_the_boundary():
+    """The records of the case above (the plain bootstrap rejects 0.077 there), with the confidence-set
+    p-value (γ = 1e-4): its 95 % Clopper–Pearson interval reaches down to the level. It is conservative
+    on these records (9/1000 at 0.05 in benchmarks/bench_trend_reference.py --case
+    short_small_walk_boundary), so only validity is held here, not the lower bound of _assert_size."""
+    records, level = 400, 0.05
+    rejected = _rejections(_case(2**15, 1e-12, 20.0), records, level, confidence_level=1e-4)
+    assert _clopper_pearson_low(rejected, records) <= level
+
+
+def test_normal_mass_is_the_gaussian_mass_of_the_rejected_set():
+    """gap = x² − c² (rejected beyond c) gives Φ̄(c), up to the linear interpolation of the crossing; a
+    gap positive everywhere gives 1/2, negative everywhere 0; two crossings give the mass between."""
+    grid = np.arange(0.0, 12.01, 0.02)
+    gaps = np.vstack(
+        (grid**2 - 2.5**2, np.ones_like(grid), -np.ones_like(grid), -(grid - 1.0) * (grid - 2.0))
+    )
+    mass = _normal_mass(grid, gaps)
+    assert mass[0] == pytest.approx(stats.norm.sf(2.5), rel=1e-3)
+    assert mass[1] == pytest.approx(0.5, rel=1e-12)
+    assert mass[2] == 0.0
+    assert mass[3] == pytest.approx(stats.norm.cdf(2.0) - stats.norm.cdf(1.0), rel=1e-3)
+
+
+def _white_fit(rrw: float, seed: int) -> ResidualFit:
+    model = NoiseModel(RATE, white_variance=3.6e-5, rrw_variance=rrw)
+    return fit_residual_model(sample_noise(model, 2**15, rng=np.random.default_rng(seed)), RATE, ModelTerms())
+
+
+def test_boundary_grid_searches_a_walk_whose_interval_reaches_zero_and_holds_an_interior_one():
+    """A walk near 0: the fit's own noise, then 0 and θ̂ + c se (c = Φ̄⁻¹(γ/2), one nuisance) where they
+    differ from θ̂. A walk many standard errors from 0: the fit's own noise alone."""
+    level = 1e-3
+    near = _white_fit(1e-12, 11)
+    grid = boundary_grid(near.noise, level)
+    walk, error = near.noise.model.rrw_variance, near.noise.standard_errors["rrw_variance"]
+    upper = walk + stats.norm.isf(level / 2) * error
+    expected = [walk] + [value for value in (0.0, upper) if value != walk]
+    assert [noise.model.rrw_variance for noise in grid] == pytest.approx(expected, rel=1e-12)
+    assert grid[0] is near.noise
+    inside = _white_fit(1e-8, 12)
+    assert (
+        inside.noise.model.rrw_variance
+        > stats.norm.isf(level / 2) * inside.noise.standard_errors["rrw_variance"]
+    )
+    assert boundary_grid(inside.noise, level) == [inside.noise]
+
+
+@pytest.mark.parametrize("level", [0.0, 1.0, -0.1, math.nan])
+def test_boundary_grid_refuses_a_confidence_level_outside_zero_one(level):
+    with pytest.raises(ValueError, match="confidence_level"):
+        boundary_grid(_white_fit(1e-12, 11).noise, level)
+
+
+def _boundary_case() -> tuple[BoundaryReference, float]:
+    case = _case(2**15, 1e-12, 20.0)
+    record = sample_noise(case.model, case.length, rng=np.random.default_rng(13))
+    projection = float(np.dot(case.weights, record))
+    record -= projection / float(np.dot(case.block_weights, case.regressor_sums)) * case.centred
+    fit = fit_residual_model(record, RATE, ModelTerms(), reference=case.pilot)
+    reference = boundary_reference(
+        fit, case.length, case.block_weights, projection, 1e-4, case.regressor_sums, 50
+    )
+    return reference, projection
+
+
+def test_boundary_reference_is_the_largest_grid_p_value_plus_gamma():
+    """sf = max over the grid's references + γ; each reference is drawn from its grid point; the threshold
+    is where the Bonferroni p-value equals α, and a per-test level not above γ is refused."""
+    reference, _ = _boundary_case()
+    assert len(reference.references) == len(reference.walks) >= 2
+    for z in (0.5, 2.0, 3.5):
+        expected = max(part.sf(z) for part in reference.references) + 1e-4
+        assert reference.sf(z) == pytest.approx(min(expected, 1.0), rel=1e-12)
+    threshold = reference.threshold(0.01, 4)
+    assert 10 ** reference.log10_p(threshold, 4) == pytest.approx(0.01, rel=1e-3)
+    with pytest.raises(ValueError, match="per-test level"):
+        reference.threshold(4e-4, 4)

@@ -16,6 +16,7 @@ import numpy as np
 from scipy import stats
 from scipy.linalg import solveh_banded
 
+from carousel_theory.closed_loop.calibration import long_tau_start
 from carousel_theory.closed_loop.residual_model import (
     FittedNoise,
     ModelTerms,
@@ -25,10 +26,13 @@ from carousel_theory.closed_loop.residual_model import (
     difference_covariance_bands,
     fit_residual_model,
     nested_statistic,
+    noise_variances,
     ranking_statistic_variance,
+    statistic_units,
     statistic_variance,
     statistic_variance_error,
 )
+from carousel_theory.closed_loop.studentized import CONFIDENCE_SHARE, BoundaryReference, boundary_reference
 from carousel_theory.closed_loop.view import ResidualView
 
 __all__ = [
@@ -45,6 +49,7 @@ __all__ = [
     "refit",
     "regressor_test",
     "step_scan",
+    "studentized_test",
 ]
 
 #: Long records are reduced to at most this many block means to choose the GLS weights of trend tests.
@@ -207,14 +212,53 @@ def ranking_noise(view: ResidualView, axis: str) -> FittedNoise:
 class RegressorTest:
     """A regressor's GLS statistic L = Σ w_t e_t in the residual: ``z`` = L/√V̂ under the fitted model (the
     ranking value), the amplitude, L, its variance and that variance's standard error
-    (:class:`~carousel_theory.closed_loop.residual_model.StatisticVariance`, None when only ranked), and
-    the p-value of a competing 1/f term on the residual without the regressor (1 when none was tested)."""
+    (:class:`~carousel_theory.closed_loop.residual_model.StatisticVariance`, None when only ranked), the
+    p-value of a competing 1/f term on the residual without the regressor (1 when none was tested), and,
+    for a joint test, the bootstrap reference of z (:func:`studentized_test`)."""
 
     z: float
     amplitude: float
     projection: float = 0.0
     spread: StatisticVariance | None = None
     competing_p: float = 1.0
+    reference: BoundaryReference | None = None
+
+
+def studentized_test(
+    view: ResidualView, axis: str, regressor: np.ndarray, terms: ModelTerms, noise: FittedNoise, level: float
+) -> tuple[float, float, BoundaryReference]:
+    """(z, L, reference) of the joint test of ``regressor`` with the stochastic ``terms``: the GLS weights
+    under ``noise`` on blocks of the first long τ (constant over them, as the reference needs), L = Σ w_t e_t,
+    the noise refitted by the fitter on r = e − (L/I)(g − ḡ) (no floor: the boundary is the reference's
+    business), z = L/√V(θ̂), and the confidence-set reference of z
+    (:func:`~carousel_theory.closed_loop.studentized.boundary_reference`) at the per-test ``level``, γ =
+    CONFIDENCE_SHARE · level."""
+    length, fit = len(view.time), view.fits[axis]
+    first = long_tau_start(fit, length)
+    if first >= len(fit.sizes):
+        raise ValueError(f"{axis!r}: {length!r} samples give no long τ to refer a trend statistic to")
+    block = int(fit.sizes[first])
+    count = length // block
+    block_weights = difference_weights(noise, regressor, block) / block
+    sums = np.asarray(regressor[: count * block], dtype=np.float64).reshape(count, block).sum(axis=1)
+    residual = view.residuals[axis]
+    projection = float(np.dot(block_weights, _block_sums(residual, block, count)))
+    information = float(np.dot(block_weights, sums))
+    signal = regressor - regressor.mean()
+    signal *= projection / information
+    refitted = fit_residual_model(view.cleaned[axis] - signal, view.sample_rate, terms, reference=fit)
+    del signal
+    weights = np.zeros(length)
+    weights[: count * block] = np.repeat(block_weights, block)
+    units = statistic_units(weights, refitted.noise.model.flicker_d)
+    z = projection / math.sqrt(max(units.variance(noise_variances(refitted.noise)), 1e-300))
+    share = CONFIDENCE_SHARE * level
+    reference = boundary_reference(refitted, length, block_weights, projection, share, sums)
+    return z, projection, reference
+
+
+def _block_sums(values: np.ndarray, block: int, count: int) -> np.ndarray:
+    return np.asarray(values[: count * block], dtype=np.float64).reshape(count, block).sum(axis=1)
 
 
 def regressor_test(
@@ -225,6 +269,7 @@ def regressor_test(
     quick: bool = False,
     refit_terms: ModelTerms | None = None,
     ranking: FittedNoise | None = None,
+    level: float = 0.0,
 ) -> RegressorTest:
     """The GLS statistic Σ w_t e_t of ``regressor``, its z under the fitted model and its variance.
 
@@ -233,11 +278,13 @@ def regressor_test(
     refitted jointly with the regressor (a Wald test under the alternative) with those stochastic terms:
     a competing term that could absorb the regressor (1/f noise under a warm-up) is fitted on the
     residual *without* the regressor, so it cannot hide it; a 1/f term the model lacks enters only when
-    that residual asks for it (:func:`_competing_terms`). The refit may not go below the lower
+    that residual asks for it (:func:`_competing_terms`). With a per-test ``level`` the joint test is
+    studentized by the refitted model and referred to its bootstrap (:func:`studentized_test`; the weights
+    chosen under the refit below). Without ``level`` the refit may not go below the lower
     2-standard-error limit for the walk of the null fit with the same terms (a smooth regressor absorbs
-    a stretch of the random walk, and σ_q² → 0 would make the test anticonservative; a null fit without
-    the 1/f term would count the 1/f power twice, once in its walk). Without ``refit_terms``: the view's
-    fit.
+    a stretch of the random walk, and σ_q² → 0 would make the normal reference anticonservative; a null
+    fit without the 1/f term would count the 1/f power twice, once in its walk). Without ``refit_terms``:
+    the view's fit.
     """
     weights = gls_weights(view, axis, regressor)
     information = float(np.dot(weights, regressor))
@@ -263,6 +310,9 @@ def regressor_test(
         # null fit's walk holds the 1/f power too, and a floor from it would count that power twice.
         floor = fit_with_terms(view, axis, terms).noise if terms != view.spec.terms else noise
         noise = bounded_noise(floor, refitted, keep_flicker_floor=not terms.flicker)
+        if level:
+            z, projection, reference = studentized_test(view, axis, regressor, terms, noise, level)
+            return RegressorTest(z, amplitude, projection, None, competing_p, reference)
         weights = gls_weights(view, axis, regressor, noise)
     spread = statistic_variance_error(noise, weights)
     projection = float(np.dot(weights, view.residuals[axis]))

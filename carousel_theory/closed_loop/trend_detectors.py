@@ -1,14 +1,18 @@
 """Detectors of slow deterministic effects: a warm-up transient, a temperature-driven bias, bias steps.
 
 Each is a GLS regression statistic (:mod:`carousel_theory.closed_loop.linear_statistics`), exactly
-Gaussian under the model given the noise variances, referred to the normal distribution at an upper
-confidence bound of its variance with the bound's non-coverage added to the p-value (Berger & Boos 1994,
-:func:`~carousel_theory.closed_loop.detection.bounded_two_sided`), Bonferroni over its scan and the axes.
+Gaussian under the model given the noise variances, Bonferroni over its scan and the axes.
 The warm-up and temperature statistics are computed jointly with the stochastic term that could absorb
 them: the noise model is refitted on the residual without the regressor, with
 a 1/f term for the warm-up (a transient and 1/f noise share the low frequencies) and with the random walk
 for the temperature (a ramp and a random walk share them), so the weaker effect is not hidden by the
-inflated stochastic term fitted with it still in the data.
+inflated stochastic term fitted with it still in the data. Their z is studentized by that refit and
+referred to a parametric bootstrap from it that refits every replicate, with the walk and 1/f variances
+that the record cannot tell from 0 searched over their confidence interval
+(:func:`~carousel_theory.closed_loop.studentized.boundary_reference`, whose size and power on whole
+records are measured in docs/trend_reference_size.md). The step scan is referred to the normal
+distribution at an upper confidence bound of its variance with the bound's non-coverage added to the
+p-value (Berger & Boos 1994, :func:`~carousel_theory.closed_loop.detection.bounded_two_sided`).
 """
 
 from __future__ import annotations
@@ -54,15 +58,23 @@ class _AxisResult:
     z: float
     log10_p: float
     details: dict[str, float]
+    threshold: float = math.inf
 
 
 def _bounded(axis: str, result: RegressorTest, tests: int, alpha: float, details: dict) -> _AxisResult:
-    """The axis's result from a full :func:`regressor_test` (z and p at the variance's upper bound)."""
+    """The axis's result from a full :func:`regressor_test`: z studentized by the refitted model and p
+    from its bootstrap reference (a joint test), else z and p at the variance's upper bound."""
+    if result.reference is not None:
+        reference = result.reference
+        found = {**details, "reference_models": float(len(reference.references))}
+        threshold = reference.threshold(alpha, tests)
+        return _AxisResult(axis, result.z, reference.log10_p(result.z, tests), found, threshold)
     if result.spread is None:
-        return _AxisResult(axis, 0.0, 0.0, details)
+        return _AxisResult(axis, 0.0, 0.0, details, bounded_threshold(alpha, tests))
     spread = result.spread
     z, log10_p = bounded_two_sided(result.projection, spread.variance, spread.standard_error, tests, alpha)
-    return _AxisResult(axis, z, log10_p, {**details, "variance_relative_error": spread.relative_error})
+    found = {**details, "variance_relative_error": spread.relative_error}
+    return _AxisResult(axis, z, log10_p, found, bounded_threshold(alpha, tests))
 
 
 def _best(results: list[_AxisResult], alpha: float) -> tuple[_AxisResult, tuple[str, ...]]:
@@ -95,7 +107,8 @@ class WarmupDetector:
             key=lambda pair: abs(pair[0]),
         )
         joint = ModelTerms(view.spec.terms.ar_order, flicker=True)
-        result = regressor_test(view, axis, exponential_regressor(view, ranked[1]), refit_terms=joint)
+        regressor = exponential_regressor(view, ranked[1])
+        result = regressor_test(view, axis, regressor, refit_terms=joint, level=alpha / tests)
         details = {
             "time_constant_s": ranked[1],
             "amplitude": result.amplitude,
@@ -109,8 +122,8 @@ class WarmupDetector:
         return Detection(
             self.name,
             abs(best.z),
-            "max abs z of an exponential transient (variance at its upper bound)",
-            bounded_threshold(alpha, tests),
+            "max abs z of an exponential transient (studentized by the joint refit)",
+            best.threshold,
             best.log10_p,
             bool(axes),
             axes,
@@ -150,7 +163,7 @@ class TemperatureDetector:
 
     name = "temperature"
     stochastic = False
-    statistic_name = "abs z of the temperature regression (variance at its upper bound)"
+    statistic_name = "abs z of the temperature regression (studentized by the joint refit)"
 
     def detect(self, view: ResidualView, alpha: float) -> Detection:
         tests = len(view.axes)
@@ -162,7 +175,9 @@ class TemperatureDetector:
             return untestable(self.name, self.statistic_name, threshold_two_sided(alpha, tests), note)
         results = []
         for axis in view.axes:
-            result = regressor_test(view, axis, view.temperature, refit_terms=view.spec.terms)
+            result = regressor_test(
+                view, axis, view.temperature, refit_terms=view.spec.terms, level=alpha / tests
+            )
             found = {"coefficient_rad_s_per_degC": result.amplitude}
             results.append(_bounded(axis, result, tests, alpha, found))
         best, axes = _best(results, alpha)
@@ -175,7 +190,7 @@ class TemperatureDetector:
             self.name,
             abs(best.z),
             self.statistic_name,
-            bounded_threshold(alpha, tests),
+            best.threshold,
             best.log10_p,
             bool(axes),
             axes,
