@@ -32,7 +32,13 @@ from carousel_theory.closed_loop.residual_model import (
     statistic_variance,
     statistic_variance_error,
 )
-from carousel_theory.closed_loop.studentized import CONFIDENCE_SHARE, BoundaryReference, boundary_reference
+from carousel_theory.closed_loop.studentized import (
+    CONFIDENCE_SHARE,
+    BoundaryReference,
+    block_sums,
+    boundary_reference,
+    expand_block_weights,
+)
 from carousel_theory.closed_loop.view import ResidualView
 
 __all__ = [
@@ -238,27 +244,20 @@ def studentized_test(
     if first >= len(fit.sizes):
         raise ValueError(f"{axis!r}: {length!r} samples give no long τ to refer a trend statistic to")
     block = int(fit.sizes[first])
-    count = length // block
     block_weights = difference_weights(noise, regressor, block) / block
-    sums = np.asarray(regressor[: count * block], dtype=np.float64).reshape(count, block).sum(axis=1)
-    residual = view.residuals[axis]
-    projection = float(np.dot(block_weights, _block_sums(residual, block, count)))
+    sums = block_sums(np.asarray(regressor, dtype=np.float64), block)
+    projection = float(np.dot(block_weights, block_sums(view.residuals[axis], block)))
     information = float(np.dot(block_weights, sums))
     signal = regressor - regressor.mean()
     signal *= projection / information
     refitted = fit_residual_model(view.cleaned[axis] - signal, view.sample_rate, terms, reference=fit)
     del signal
-    weights = np.zeros(length)
-    weights[: count * block] = np.repeat(block_weights, block)
+    weights = expand_block_weights(block_weights, block, length)
     units = statistic_units(weights, refitted.noise.model.flicker_d)
     z = projection / math.sqrt(max(units.variance(noise_variances(refitted.noise)), 1e-300))
     share = CONFIDENCE_SHARE * level
     reference = boundary_reference(refitted, length, block_weights, projection, share, sums)
     return z, projection, reference
-
-
-def _block_sums(values: np.ndarray, block: int, count: int) -> np.ndarray:
-    return np.asarray(values[: count * block], dtype=np.float64).reshape(count, block).sum(axis=1)
 
 
 def regressor_test(

@@ -74,7 +74,9 @@ from __future__ import annotations
 import functools
 import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 from scipy import optimize, special, stats
@@ -104,8 +106,10 @@ __all__ = [
     "REPLICATES",
     "BoundaryReference",
     "TrendReference",
+    "block_sums",
     "boundary_grid",
     "boundary_reference",
+    "expand_block_weights",
     "model_curve",
     "octave_products",
     "trend_reference",
@@ -226,18 +230,27 @@ class TrendReference:
 
     def log10_p(self, z: float, tests: int) -> float:
         """log10 of the p-value of |z|, Bonferroni over ``tests``."""
-        return min(0.0, math.log10(max(tests, 1)) + math.log10(max(self.sf(z), 1e-300)))
+        return _bonferroni_log10_p(self.sf(z), tests)
 
     def threshold(self, alpha: float, tests: int) -> float:
         """The |z| at which the Bonferroni p-value is ``alpha`` (∞ when none reaches it)."""
-        target = math.log(alpha / max(tests, 1))
+        return _threshold(self.sf, alpha / max(tests, 1))
 
-        def excess(z: float) -> float:
-            return math.log(max(self.sf(z), 1e-300)) - target
 
-        if excess(_LARGEST_Z) > 0:
-            return math.inf
-        return float(optimize.brentq(excess, 0.0, _LARGEST_Z, xtol=1e-4))
+def _bonferroni_log10_p(p: float, tests: int) -> float:
+    return min(0.0, math.log10(max(tests, 1)) + math.log10(max(p, 1e-300)))
+
+
+def _threshold(sf: Callable[[float], float], level: float) -> float:
+    """The |z| where sf(z) = ``level`` (∞ when sf stays above it up to _LARGEST_Z)."""
+    target = math.log(level)
+
+    def excess(z: float) -> float:
+        return math.log(max(sf(z), 1e-300)) - target
+
+    if excess(_LARGEST_Z) > 0:
+        return math.inf
+    return float(optimize.brentq(excess, 0.0, _LARGEST_Z, xtol=1e-4))
 
 
 def _normal_mass(grid: np.ndarray, gap: np.ndarray) -> np.ndarray:
@@ -257,13 +270,15 @@ def _normal_mass(grid: np.ndarray, gap: np.ndarray) -> np.ndarray:
     return mass + np.where(gap[:, -1] > 0, tail[-1], 0.0)
 
 
-def _expand(block_weights: np.ndarray, block: int, length: int) -> np.ndarray:
+def expand_block_weights(block_weights: np.ndarray, block: int, length: int) -> np.ndarray:
+    """Per-sample weights of ``length`` samples, constant over blocks of ``block`` (0 past the last)."""
     expanded = np.zeros(length)
     expanded[: len(block_weights) * block] = np.repeat(block_weights, block)
     return expanded
 
 
-def _block_sums(values: np.ndarray, block: int) -> np.ndarray:
+def block_sums(values: np.ndarray, block: int) -> np.ndarray:
+    """Sums of ``values`` over its whole blocks of ``block`` samples."""
     count = len(values) // block
     return values[: count * block].reshape(count, block).sum(axis=1)
 
@@ -345,11 +360,11 @@ def trend_reference(
     if first >= len(fit.sizes):
         raise ValueError(f"length={length!r}: no long τ to draw the trend reference from")
     block = int(fit.sizes[first])
-    weights = _expand(np.asarray(block_weights, dtype=np.float64), block, length)
+    weights = expand_block_weights(np.asarray(block_weights, dtype=np.float64), block, length)
     sets, cholesky = _active_sets(fit, weights)
     noise = fit.noise if generating is None else generating
     variance = statistic_units(weights, noise.model.flicker_d).variance(noise_variances(noise))
-    covariance = _block_sums(covariance_product(noise, weights), block)  # Cov(block sums, L)
+    covariance = block_sums(covariance_product(noise, weights), block)  # Cov(block sums, L)
     direction = covariance
     if regressor_sums is not None:
         direction = covariance - variance / float(np.dot(block_weights, regressor_sums)) * regressor_sums
@@ -380,7 +395,7 @@ class BoundaryReference:
 
     def log10_p(self, z: float, tests: int) -> float:
         """log10 of the p-value of |z|, Bonferroni over ``tests``."""
-        return min(0.0, math.log10(max(tests, 1)) + math.log10(self.sf(z)))
+        return _bonferroni_log10_p(self.sf(z), tests)
 
     def threshold(self, alpha: float, tests: int) -> float:
         """The |z| at which the Bonferroni p-value is ``alpha`` (∞ when none reaches it); γ must be below
@@ -391,14 +406,7 @@ class BoundaryReference:
                 f"alpha={alpha!r}, tests={tests!r}: the per-test level {level!r} must exceed the confidence"
                 f" set's share γ = {self.confidence_level!r}"
             )
-        target = math.log(level)
-
-        def excess(z: float) -> float:
-            return math.log(self.sf(z)) - target
-
-        if excess(_LARGEST_Z) > 0:
-            return math.inf
-        return float(optimize.brentq(excess, 0.0, _LARGEST_Z, xtol=1e-4))
+        return _threshold(self.sf, level)
 
 
 def boundary_grid(noise: FittedNoise, confidence_level: float) -> list[FittedNoise]:
@@ -419,7 +427,8 @@ def boundary_grid(noise: FittedNoise, confidence_level: float) -> list[FittedNoi
             continue
         for value in (0.0, estimate + width * error):
             if value != estimate:
-                grid.append(replace(noise, model=replace(noise.model, **{name: value})))
+                raised: dict[str, Any] = {name: value}
+                grid.append(replace(noise, model=replace(noise.model, **raised)))
     return grid
 
 
