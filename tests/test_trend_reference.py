@@ -266,10 +266,11 @@ def _boundary_case() -> tuple[BoundaryReference, float]:
 
 
 def test_boundary_reference_is_the_largest_grid_p_value_plus_gamma():
-    """sf = max over the grid's references + γ; each reference is drawn from its grid point; the threshold
-    is where the Bonferroni p-value equals α, and a per-test level not above γ is refused."""
+    """sf = max over the grid's references + γ, one reference per grid point (the fit's own walk first);
+    the threshold is where the Bonferroni p-value equals α, and a per-test level not above γ is refused."""
     reference, _ = _boundary_case()
     assert len(reference.references) == len(reference.walks) >= 2
+    assert min(reference.walks) == 0.0 and max(reference.walks) > reference.walks[0]  # 0 and the upper end
     for z in (0.5, 2.0, 3.5):
         expected = max(part.sf(z) for part in reference.references) + 1e-4
         assert reference.sf(z) == pytest.approx(min(expected, 1.0), rel=1e-12)
