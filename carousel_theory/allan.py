@@ -54,6 +54,7 @@ from carousel_theory._validation import (
     check_positive_integer,
     check_positive_real,
 )
+from carousel_theory.binary_scaling import scaled_by_power_of_two
 from carousel_theory.data import RESERVED_COLUMN_NAMES, TIME_COLUMN_NAMES, Recording, recording_from_arrays
 from carousel_theory.noise_model import (
     QUANTIZATION_ALLAN_VARIANCE,
@@ -702,11 +703,11 @@ def _scaled_centered(samples: np.ndarray) -> tuple[np.ndarray, int]:
     and rates near 10⁻³⁰⁰ no longer underflow: σ_A² = 4ᵉ · (the variance of the scaled samples).
     """
     first = int(np.frexp(np.max(np.abs(samples)))[1])
-    centered = np.ldexp(samples, -first)
+    centered = scaled_by_power_of_two(samples, -first)
     centered -= centered.mean()
     second = int(np.frexp(np.max(np.abs(centered)))[1])
     if second:
-        np.ldexp(centered, -second, out=centered)
+        scaled_by_power_of_two(centered, -second, out=centered)
     return centered, first + second
 
 

@@ -17,6 +17,8 @@ from typing import Any
 
 import numpy as np
 
+from carousel_theory.binary_scaling import scaled_by_power_of_two
+
 __all__ = [
     "LARGEST_RATE",
     "MINIMUM_SAMPLES",
@@ -46,7 +48,7 @@ def _standard_deviation(values: np.ndarray) -> float:
     """The standard deviation, computed at a power-of-two scale so that it neither overflows nor
     underflows on the way (the scale is exact in binary)."""
     exponent = int(np.frexp(np.max(np.abs(values)))[1])
-    scaled = np.ldexp(values, -exponent)
+    scaled = scaled_by_power_of_two(values, -exponent)
     return float(np.ldexp(np.std(scaled), exponent))
 
 
