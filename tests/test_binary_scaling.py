@@ -26,7 +26,9 @@ def test_same_bits_as_ldexp(values: list[float], exponent: int) -> None:
 @pytest.mark.parametrize("exponent", [-1075, -1074, -1023, -1022, -60, 0, 1, 1023, 1024, 1074])
 def test_edges_of_the_normal_range(exponent: int) -> None:
     tiny, huge = np.nextafter(0.0, 1.0), np.finfo(np.float64).max
-    array = np.array([tiny, 3 * tiny, 2.0**-1022, 1.5 * 2.0**-1000, 0.75, -0.75, 2.0**1000, huge, -huge, -0.0])
+    array = np.array(
+        [tiny, 3 * tiny, 2.0**-1022, 1.5 * 2.0**-1000, 0.75, -0.75, 2.0**1000, huge, -huge, -0.0]
+    )
     with np.errstate(over="ignore", under="ignore"):
         expected = np.ldexp(array, exponent)
         got = scaled_by_power_of_two(array, exponent)

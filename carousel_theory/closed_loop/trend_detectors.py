@@ -152,8 +152,13 @@ class WarmupDetector:
             curve -= curve.mean()
             signals[axis] = curve
             fitted[axis] = {"amplitude": amplitude, "time_constant_s": time_constant}
-        # Detected jointly with a 1/f term: the two enter the model together.
-        joint = float(detection.details.get("competing_flicker_p", 1.0)) < COMPETING_TERM_LEVEL
+        # Detected jointly with a 1/f term whose own test (on the residual without the warm-up) is
+        # significant at the loop's rate: the two enter the model together and the 1/f term is named
+        # (control._joint_term). A 1/f term that only entered the joint statistic (p below
+        # COMPETING_TERM_LEVEL, not below ``alpha``) stays out of the model rather than entering it unnamed:
+        # its own detector tests it on the residual without the warm-up (control._companion adds the two
+        # together when it is significant there; otherwise the next iteration tests it again).
+        joint = float(detection.details.get("competing_flicker_p", 1.0)) < min(alpha, COMPETING_TERM_LEVEL)
         terms = ModelTerms(flicker=True) if joint else None
         return FittedEffect(self.name, fitted, signals=signals, terms=terms)
 
