@@ -170,7 +170,10 @@ def _fractional_integration(w: np.ndarray, d: Any) -> np.ndarray:
     # zero-padding to ≥ 2n − 1 makes the circular convolution equal the linear one on t = 1 … n
     length = scipy.fft.next_fast_len(2 * n - 1, real=True)
     transfer = scipy.fft.rfft(fractional_coefficients(d, n), length)
-    return scipy.fft.irfft(scipy.fft.rfft(w, length, axis=-1) * transfer, length, axis=-1)[..., :n]
+    spectrum = scipy.fft.rfft(w, length, axis=-1)
+    spectrum *= transfer  # in place: one spectrum fewer alive on a long record (the same products)
+    del transfer
+    return scipy.fft.irfft(spectrum, length, axis=-1, overwrite_x=True)[..., :n]
 
 
 # --- exact covariance entries ---------------------------------------------------------------------

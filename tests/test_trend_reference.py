@@ -30,6 +30,7 @@ from carousel_theory.closed_loop.studentized import (
     _normal_mass,
     boundary_grid,
     boundary_reference,
+    fit_units,
     octave_products,
     trend_reference,
 )
@@ -106,7 +107,7 @@ def test_active_sets_reproduce_the_fitters_variance(rrw, flicker):
     record = sample_noise(model, 60_000, rng=np.random.default_rng(7))
     fit = fit_residual_model(record, RATE, ModelTerms(flicker=bool(flicker)))
     weights = np.random.default_rng(7).standard_normal(60_000)
-    sets, cholesky = _active_sets(fit, weights)
+    sets, cholesky = _active_sets(fit, fit_units(fit, weights))
     produced = sets.variance(*sets.conditions(np.linalg.solve(cholesky, fit.observed)))
     expected = statistic_units(weights).variance(noise_variances(fit.noise))
     assert float(produced) == pytest.approx(expected, rel=1e-8)

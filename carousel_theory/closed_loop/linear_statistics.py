@@ -28,7 +28,6 @@ from carousel_theory.closed_loop.residual_model import (
     nested_statistic,
     noise_variances,
     ranking_statistic_variance,
-    statistic_units,
     statistic_variance,
     statistic_variance_error,
 )
@@ -38,6 +37,7 @@ from carousel_theory.closed_loop.studentized import (
     block_sums,
     boundary_reference,
     expand_block_weights,
+    fit_units,
 )
 from carousel_theory.closed_loop.view import ResidualView
 
@@ -253,10 +253,11 @@ def studentized_test(
     refitted = fit_residual_model(view.cleaned[axis] - signal, view.sample_rate, terms, reference=fit)
     del signal
     weights = expand_block_weights(block_weights, block, length)
-    units = statistic_units(weights, refitted.noise.model.flicker_d)
+    units = fit_units(refitted, weights)
+    del weights  # the reference expands its own; one record-length array less at its peak
     z = projection / math.sqrt(max(units.variance(noise_variances(refitted.noise)), 1e-300))
     share = CONFIDENCE_SHARE * level
-    reference = boundary_reference(refitted, length, block_weights, projection, share, sums)
+    reference = boundary_reference(refitted, length, block_weights, projection, share, sums, units=units)
     return z, projection, reference
 
 

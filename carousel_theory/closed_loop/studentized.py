@@ -90,6 +90,7 @@ from carousel_theory.closed_loop.calibration import (
 from carousel_theory.closed_loop.residual_model import (
     FittedNoise,
     ResidualFit,
+    StatisticUnits,
     covariance_product,
     noise_variances,
     simulate_block_sum_draws,
@@ -110,6 +111,7 @@ __all__ = [
     "boundary_grid",
     "boundary_reference",
     "expand_block_weights",
+    "fit_units",
     "model_curve",
     "octave_products",
     "trend_reference",
@@ -283,11 +285,18 @@ def block_sums(values: np.ndarray, block: int) -> np.ndarray:
     return values[: count * block].reshape(count, block).sum(axis=1)
 
 
-def _active_sets(fit: ResidualFit, weights: np.ndarray) -> tuple[_ActiveSets, np.ndarray]:
+def fit_units(fit: ResidualFit, weights: np.ndarray) -> StatisticUnits:
+    """:func:`statistic_units` of ``weights`` at the fit's 1/f order, the 1/f unit (a transform of twice
+    the record's length) only when the fit has a 1/f term: otherwise no model of the reference has one."""
+    flicker = "flicker_variance" in fit.result.parameters
+    return statistic_units(weights, fit.noise.model.flicker_d, flicker=flicker)
+
+
+def _active_sets(fit: ResidualFit, units: StatisticUnits) -> tuple[_ActiveSets, np.ndarray]:
     """The fitter's GLS step for ``fit`` (its parameters, τ and covariance across τ) with V per unit of
-    each parameter for ``weights``; and the Cholesky factor of that covariance."""
+    each parameter (``units``, :func:`fit_units` of the statistic's weights); and the Cholesky factor
+    of that covariance."""
     model = fit.noise.model
-    units = statistic_units(weights, model.flicker_d)
     ar = model.ar_coefficients
     gain = 1.0 / (1.0 - sum(ar)) ** 2 if ar else 1.0
     columns, per_unit = [], []
@@ -350,20 +359,24 @@ def trend_reference(
     regressor_sums: np.ndarray | None = None,
     replicates: int = REPLICATES,
     generating: FittedNoise | None = None,
+    units: StatisticUnits | None = None,
 ) -> TrendReference:
     """The bootstrap reference of L/√V(θ̂) (module docstring) for the weights ``block_weights`` (the
     per-sample weight on each block of ``fit.sizes[first]`` samples, ``first`` the first long τ) under
     ``fit``, the fit of r = e (``regressor_sums`` None) or of r = e − (L/I) g (``regressor_sums`` the
     block sums of g); ``projection`` is the observed L (it seeds the generator). The replicates are drawn
-    from ``generating`` (default: the fit's own noise), refitted and studentized as ``fit`` was."""
+    from ``generating`` (default: the fit's own noise), refitted and studentized as ``fit`` was.
+    ``units``, when given, are :func:`fit_units` of the expanded weights (a caller that has them spares
+    the record-length transforms)."""
     first = long_tau_start(fit, length)
     if first >= len(fit.sizes):
         raise ValueError(f"length={length!r}: no long τ to draw the trend reference from")
     block = int(fit.sizes[first])
     weights = expand_block_weights(np.asarray(block_weights, dtype=np.float64), block, length)
-    sets, cholesky = _active_sets(fit, weights)
+    units = fit_units(fit, weights) if units is None else units
+    sets, cholesky = _active_sets(fit, units)
     noise = fit.noise if generating is None else generating
-    variance = statistic_units(weights, noise.model.flicker_d).variance(noise_variances(noise))
+    variance = units.variance(noise_variances(noise))
     covariance = block_sums(covariance_product(noise, weights), block)  # Cov(block sums, L)
     direction = covariance
     if regressor_sums is not None:
@@ -440,14 +453,23 @@ def boundary_reference(
     confidence_level: float,
     regressor_sums: np.ndarray | None = None,
     replicates: int = REPLICATES,
+    units: StatisticUnits | None = None,
 ) -> BoundaryReference:
     """The confidence-set reference of L/√V(θ̂) (module docstring): :func:`trend_reference` drawn at
     each point of :func:`boundary_grid` of ``fit.noise`` with ``replicates`` each, γ =
-    ``confidence_level``; the other arguments as for :func:`trend_reference`."""
+    ``confidence_level``; the other arguments as for :func:`trend_reference` (the grid keeps the fit's
+    1/f order, so one set of ``units``, when given, serves every point)."""
     grid = boundary_grid(fit.noise, confidence_level)
     references = tuple(
         trend_reference(
-            fit, length, block_weights, projection, regressor_sums, replicates, None if i == 0 else noise
+            fit,
+            length,
+            block_weights,
+            projection,
+            regressor_sums,
+            replicates,
+            None if i == 0 else noise,
+            units,
         )
         for i, noise in enumerate(grid)
     )
