@@ -16,14 +16,16 @@ With ``--keep DIR`` the recordings stay in DIR, and a recording already there (w
 with the same ``--samples``; its length is checked) is used again instead of being written anew.
 
 Measured with this script (2 shared cores, loaded by other work; wall times vary by ±50 %), 4.32·10⁷
-samples × 3 axes: ``loop`` NPZ 3.08 GB (204–242 s), CSV 3.31 GB (390 s); ``allan`` and ``fit`` NPZ 2.07 and
-2.07 GB, CSV 2.33 and 2.31 GB. The target is met with about 0.7 GB to spare.
+samples × 3 axes: ``loop`` NPZ 3.13 GB (334 s), CSV 3.38 GB (504 s); ``allan`` and ``fit`` NPZ 2.07 and
+2.07 GB (10.6 and 14.8 s), CSV 2.32 and 2.34 GB (33 and 35 s). The target is met with about 0.6 GB to
+spare. (With the confidence-set trend reference, before its 1/f unit was limited to refits with a 1/f
+term and computed once per reference, the NPZ loop had risen to 5.06 GB.)
 
 Where the loop's memory goes was found once with a resident-set probe around each stage (not part of this
 script; its figures cannot be rerun from here): the loop holds about 1.3 GB from its start (the interpreter
 and libraries, the time column and the two analysed axes, 0.32 GB each) and about 1.8 GB at its end (the
-fitted models and the shared 1/f unit autocovariance, 0.32 GB); its highest stage is the warm-up detector's
-refit (≈ 3.3 GB on the CSV).
+fitted models and the shared 1/f unit autocovariance, 0.32 GB); its highest stage is the warm-up
+detector's joint test (its refit and confidence-set reference).
 """
 
 from __future__ import annotations
