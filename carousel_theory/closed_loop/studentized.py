@@ -376,6 +376,8 @@ def trend_reference(
     units = fit_units(fit, weights) if units is None else units
     sets, cholesky = _active_sets(fit, units)
     noise = fit.noise if generating is None else generating
+    if noise.model.flicker_variance and not units.flicker:  # a generating 1/f term the fit lacks
+        units = statistic_units(weights, noise.model.flicker_d)
     variance = units.variance(noise_variances(noise))
     covariance = block_sums(covariance_product(noise, weights), block)  # Cov(block sums, L)
     direction = covariance
