@@ -20,6 +20,7 @@ from carousel_theory.closed_loop.residual_model import (
     ResidualFit,
     covariance_product,
     fit_residual_model,
+    fit_units,
     noise_variances,
     simulate_block_sum_draws,
     statistic_units,
@@ -30,7 +31,6 @@ from carousel_theory.closed_loop.studentized import (
     _normal_mass,
     boundary_grid,
     boundary_reference,
-    fit_units,
     octave_products,
     trend_reference,
 )

@@ -25,6 +25,7 @@ from carousel_theory.closed_loop.residual_model import (
     bounded_noise,
     difference_covariance_bands,
     fit_residual_model,
+    fit_units,
     nested_statistic,
     noise_variances,
     ranking_statistic_variance,
@@ -37,7 +38,6 @@ from carousel_theory.closed_loop.studentized import (
     block_sums,
     boundary_reference,
     expand_block_weights,
-    fit_units,
 )
 from carousel_theory.closed_loop.view import ResidualView
 

@@ -43,6 +43,7 @@ __all__ = [
     "describe_noise",
     "difference_covariance_bands",
     "fit_residual_model",
+    "fit_units",
     "model_curve_error",
     "nested_statistic",
     "noise_growth",
@@ -346,6 +347,14 @@ def statistic_units(
         weighted_sum_variance(weights, "rrw"),
         weighted_sum_variance(weights, "flicker", d=flicker_d) if flicker else 0.0,
     )
+
+
+def fit_units(fit: ResidualFit, weights: np.ndarray) -> StatisticUnits:
+    """:func:`statistic_units` of ``weights`` at the fit's 1/f order, the 1/f unit (a transform of twice
+    the record's length) only when the fit has a 1/f term: without it neither V(θ̂) nor any model drawn
+    with the fit's terms has a 1/f variance."""
+    flicker = "flicker_variance" in fit.result.parameters
+    return statistic_units(weights, fit.noise.model.flicker_d, flicker=flicker)
 
 
 def covariance_product(noise: FittedNoise, weights: np.ndarray) -> np.ndarray:

@@ -92,6 +92,7 @@ from carousel_theory.closed_loop.residual_model import (
     ResidualFit,
     StatisticUnits,
     covariance_product,
+    fit_units,
     noise_variances,
     simulate_block_sum_draws,
     statistic_units,
@@ -111,7 +112,6 @@ __all__ = [
     "boundary_grid",
     "boundary_reference",
     "expand_block_weights",
-    "fit_units",
     "model_curve",
     "octave_products",
     "trend_reference",
@@ -283,13 +283,6 @@ def block_sums(values: np.ndarray, block: int) -> np.ndarray:
     """Sums of ``values`` over its whole blocks of ``block`` samples."""
     count = len(values) // block
     return values[: count * block].reshape(count, block).sum(axis=1)
-
-
-def fit_units(fit: ResidualFit, weights: np.ndarray) -> StatisticUnits:
-    """:func:`statistic_units` of ``weights`` at the fit's 1/f order, the 1/f unit (a transform of twice
-    the record's length) only when the fit has a 1/f term: otherwise no model of the reference has one."""
-    flicker = "flicker_variance" in fit.result.parameters
-    return statistic_units(weights, fit.noise.model.flicker_d, flicker=flicker)
 
 
 def _active_sets(fit: ResidualFit, units: StatisticUnits) -> tuple[_ActiveSets, np.ndarray]:
