@@ -54,7 +54,7 @@ from carousel_theory._validation import (
     check_positive_integer,
     check_positive_real,
 )
-from carousel_theory.binary_scaling import scaled_by_power_of_two
+from carousel_theory.binary_scaling import binary_exponent, scaled_by_power_of_two
 from carousel_theory.data import RESERVED_COLUMN_NAMES, TIME_COLUMN_NAMES, Recording, recording_from_arrays
 from carousel_theory.noise_model import (
     QUANTIZATION_ALLAN_VARIANCE,
@@ -702,10 +702,10 @@ def _scaled_centered(samples: np.ndarray) -> tuple[np.ndarray, int]:
     Scaling by a power of two is exact in binary, so rates near 10³⁰⁰ no longer overflow when squared
     and rates near 10⁻³⁰⁰ no longer underflow: σ_A² = 4ᵉ · (the variance of the scaled samples).
     """
-    first = int(np.frexp(np.max(np.abs(samples)))[1])
+    first = binary_exponent(samples)
     centered = scaled_by_power_of_two(samples, -first)
     centered -= centered.mean()
-    second = int(np.frexp(np.max(np.abs(centered)))[1])
+    second = binary_exponent(centered)
     if second:
         scaled_by_power_of_two(centered, -second, out=centered)
     return centered, first + second

@@ -11,10 +11,16 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["scaled_by_power_of_two"]
+__all__ = ["binary_exponent", "scaled_by_power_of_two"]
 
 #: Exponents k for which 2ᵏ is a normal float64.
 _NORMAL_EXPONENTS = range(-1022, 1024)
+
+
+def binary_exponent(values: np.ndarray) -> int:
+    """e with the largest magnitude of ``values`` in [2^(e−1), 2^e) (0 when every value is 0): scaling by
+    2^(−e) brings it into [1/2, 1)."""
+    return int(np.frexp(np.max(np.abs(values)))[1])
 
 
 def scaled_by_power_of_two(values: np.ndarray, exponent: int, out: np.ndarray | None = None) -> np.ndarray:

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from carousel_theory.binary_scaling import scaled_by_power_of_two
+from carousel_theory.binary_scaling import binary_exponent, scaled_by_power_of_two
 
 __all__ = [
     "LARGEST_RATE",
@@ -47,7 +47,7 @@ class UnusableSignalError(ValueError):
 def _standard_deviation(values: np.ndarray) -> float:
     """The standard deviation, computed at a power-of-two scale so that it neither overflows nor
     underflows on the way (the scale is exact in binary)."""
-    exponent = int(np.frexp(np.max(np.abs(values)))[1])
+    exponent = binary_exponent(values)
     scaled = scaled_by_power_of_two(values, -exponent)
     return float(np.ldexp(np.std(scaled), exponent))
 

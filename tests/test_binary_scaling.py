@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from carousel_theory.binary_scaling import scaled_by_power_of_two
+from carousel_theory.binary_scaling import binary_exponent, scaled_by_power_of_two
 
 
 @given(
@@ -40,3 +40,12 @@ def test_in_place() -> None:
     result = scaled_by_power_of_two(array, -2, out=array)
     assert result is array
     np.testing.assert_array_equal(array, [0.25, -0.75, 0.125])
+
+
+@pytest.mark.parametrize(
+    ("values", "expected"),
+    [([0.5], 0), ([0.75, -0.25], 0), ([1.0], 1), ([-3.0, 2.0], 2), ([0.0, 0.0], 0), ([2.0**-1074], -1073)],
+)
+def test_binary_exponent(values: list[float], expected: int) -> None:
+    """The largest magnitude lies in [2^(e−1), 2^e), so that scaling by 2^(−e) brings it into [1/2, 1)."""
+    assert binary_exponent(np.array(values)) == expected
