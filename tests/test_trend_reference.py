@@ -4,7 +4,7 @@ whole simulated records (the check a reference that mis-studentizes the observed
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pytest
@@ -279,3 +279,20 @@ def test_boundary_reference_is_the_largest_grid_p_value_plus_gamma():
     assert 10 ** reference.log10_p(threshold, 4) == pytest.approx(0.01, rel=1e-3)
     with pytest.raises(ValueError, match="per-test level"):
         reference.threshold(4e-4, 4)
+
+
+def test_a_generating_one_over_f_term_the_fit_lacks_enters_the_variance():
+    """The fit has no 1/f term, so its statistic units leave the 1/f unit at 0 (no transform of twice the
+    record's length); a generating model with a 1/f variance still gets V with its 1/f part, the same V as
+    the units with the 1/f unit computed."""
+    case = _case(2**15, 1e-11, 20.0)
+    generating = replace(
+        case.pilot.noise, model=replace(case.pilot.noise.model, flicker_variance=5e-8, flicker_d=0.5)
+    )
+    reference = trend_reference(
+        case.pilot, case.length, case.block_weights, 0.0, case.regressor_sums, 20, generating
+    )
+    expected = statistic_units(case.weights, 0.5).variance(noise_variances(generating))
+    assert fit_units(case.pilot, case.weights).flicker == 0.0
+    assert reference.variance == pytest.approx(expected, rel=1e-12)
+    assert expected > statistic_units(case.weights, 0.5, flicker=False).variance(noise_variances(generating))
