@@ -146,8 +146,10 @@ class LagModel:
         """Σ_t θ_t H_t(x) at points x (integers within the finite terms' reach of −2), element by element:
         the table within reach + 6 of −2 (it spans −reach − 8 … reach + 7), the cubic beyond, and 1/f."""
         distance = np.abs(x + 2.0)
-        result = np.where(x > 0, _cubic(self, x), 0.0)
         near = distance <= self.reach + 6
+        result = np.zeros(np.shape(x))
+        beyond = (x > 0) & ~near  # the cubic where the table ends (H is 0 on the far left)
+        result[beyond] = _cubic(self, x[beyond])
         if np.any(near):
             result[near] = self.table[np.rint(x[near]).astype(np.int64) - self.table_low]
         if self.flicker_variance:
@@ -417,11 +419,11 @@ def _tabulated_gather(pairs: _Pairs, owner: np.ndarray, lags: np.ndarray) -> _Ga
     keys = np.repeat(first - offsets, lengths) + np.arange(int(lengths.sum()))
     run = np.searchsorted(first, lowest, side="right") - 1  # the merged run holding each argument run
     base = (offsets[run] - first[run] + positions.ravel()).reshape(positions.shape)  # q − δ ↦ base − δ
-    rows = base.T.astype(np.int64)  # each ramp's base over the runs
-    runs, integral = np.repeat(np.arange(len(starts)), stops - starts + 1), lags.astype(np.int64)
-    index = np.empty((len(lags), len(rows)), dtype=np.int32)
-    for k, row in enumerate(rows):
-        np.subtract(row[runs], integral, out=index[:, k], casting="unsafe")
+    # Indices into the keys (fewer than 2³¹: the distinct arguments of one covariance), each lag's nine
+    # ramps in a row: its run's bases less the lag.
+    runs = np.repeat(np.arange(len(starts)), stops - starts + 1)
+    index = base.astype(np.int32)[runs]
+    index -= lags.astype(np.int32)[:, None]
     return _Gathered.of(keys.astype(np.float64), index, pairs.weights[owner])
 
 
