@@ -322,13 +322,13 @@ def _calibration_record(samples: int, seed: int) -> dict[str, Any]:
 TREND_AND_FLICKER = ("steps", "warmup", "temperature", "flicker")
 
 
-def run_calibration(counts: dict[int, int], stored: Callable[[dict], None]) -> None:
-    """Clean records of each duration: each detector's rejections at NOMINAL (1/f by both references)
-    and the coverage misses of the variance bound; stored after every record."""
+def run_calibration(counts: dict[int, int], stored: Callable[[dict], None], first_seed: int = 0) -> None:
+    """Clean records of each duration, seeds ``first_seed`` onwards: each detector's rejections at NOMINAL
+    (1/f by both references) and the coverage misses of the variance bound; stored after every record."""
     tallies: dict[str, Any] = {}
     for duration, count in counts.items():
         tally = tallies.setdefault(str(duration), {"runs": 0, "rejected": Counter(), "misses": {}})
-        for seed in progress(range(count), label=f"calibration {duration} s"):
+        for seed in progress(range(first_seed, first_seed + count), label=f"calibration {duration} s"):
             record = _calibration_record(int(duration * RATE), seed)
             tally["runs"] += 1
             tally["rejected"].update(name for name, value in record["rejected"].items() if value)
@@ -563,6 +563,18 @@ def _json_tally(tally: dict[str, Any]) -> dict[str, Any]:
     return {"runs": tally["runs"], "rejected": dict(tally["rejected"]), "misses": tally["misses"]}
 
 
+def _summed_tally(first: dict[str, Any] | None, second: dict[str, Any]) -> dict[str, Any]:
+    """Two stored calibration tallies of one duration (records from different seeds) as one."""
+    if first is None:
+        return second
+    rejected = Counter(first["rejected"]) + Counter(second["rejected"])
+    misses = {
+        name: [a + b for a, b in zip(first["misses"][name], counts, strict=True)]
+        for name, counts in second["misses"].items()
+    }
+    return {"runs": first["runs"] + second["runs"], "rejected": dict(rejected), "misses": misses}
+
+
 def _clean_record(tally: CleanTally) -> list:
     return [tally.runs, tally.alarms, dict(tally.outcomes), dict(tally.fired)]
 
@@ -572,7 +584,7 @@ def run_section(section: str, args: argparse.Namespace) -> None:
     goes: a section stopped early leaves the counts it reached, and the document shows those counts."""
     _save(
         args.parts,
-        f"arguments_{section}",
+        f"arguments_{section}" + (f"_from{args.first_seed}" if args.first_seed else ""),
         {
             "clean": args.clean,
             "seeds": args.seeds,
@@ -593,14 +605,19 @@ def run_section(section: str, args: argparse.Namespace) -> None:
             )
     elif section == "calibration":
         counts = dict(zip((300, 3600), args.calibration, strict=True))
+        suffix = f"_from{args.first_seed}" if args.first_seed else ""
         for duration, count in counts.items():
+            if not count:
+                continue
             run_calibration(
                 {duration: count},
                 lambda tallies, d=duration: _save(
-                    args.parts, f"calibration_{d}", {k: _json_tally(v) for k, v in tallies.items()}
+                    args.parts, f"calibration_{d}{suffix}", {k: _json_tally(v) for k, v in tallies.items()}
                 ),
+                args.first_seed,
             )
-        _save(args.parts, "flicker_power", run_flicker_power(args.power_seeds))
+        if args.power_seeds:
+            _save(args.parts, "flicker_power", run_flicker_power(args.power_seeds))
     elif section == "pairs":
         run_pairs(
             args.pair_seeds,
@@ -644,7 +661,8 @@ def _document_sections(args: argparse.Namespace) -> list[str]:
         lines += [f"Clean records of {', '.join(missing)}: {MISSING[0].lower()}{MISSING[1:]}", ""]
     calibration: dict[str, Any] = {}
     for path in sorted(args.parts.glob("calibration_*.json")):
-        calibration.update(json.loads(path.read_text(encoding="utf-8")))
+        for duration, tally in json.loads(path.read_text(encoding="utf-8")).items():
+            calibration[duration] = _summed_tally(calibration.get(duration), tally)
     if calibration:
         lines += _calibration_lines(calibration, _maybe(args.parts, "flicker_power"))
     else:
@@ -674,8 +692,8 @@ def write_document(args: argparse.Namespace) -> None:
         "Commands: `python benchmarks/bench_loop_detection.py --section clean --clean N300 N3600 N10000`, "
         "`... --section calibration --calibration N300 N3600 --power-seeds K`, "
         "`... --section pairs --pair-seeds K`, `... --section effects --seeds K`, then `... --write` "
-        "(sections can run in parallel, and a clean duration can be split over runs with `--durations D "
-        "--first-seed S`; the counts used are in the tables)."
+        "(sections can run in parallel; a clean duration can be split over runs with `--durations D "
+        "--first-seed S`, and the calibration's with `--first-seed S`; the counts used are in the tables)."
     )
     lines = [
         "<!-- generated by benchmarks/bench_loop_detection.py — do not edit -->",
@@ -719,7 +737,10 @@ def main() -> int:
         help="clean durations to run (default all)",
     )
     parser.add_argument(
-        "--first-seed", type=int, default=0, help="first clean record's seed (to split a duration over runs)"
+        "--first-seed",
+        type=int,
+        default=0,
+        help="first record's seed of the clean and calibration sections (to split a duration over runs)",
     )
     parser.add_argument(
         "--calibration",
