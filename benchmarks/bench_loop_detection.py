@@ -390,7 +390,9 @@ def _calibration_lines(tallies: dict[str, Any], power: list[list] | None) -> lis
         "How often the true variance V(θ) of a GLS statistic exceeds its upper bound V̂ + Φ̄⁻¹(γ) se(V̂) "
         "(rate, 95 % Clopper–Pearson), for the weights of a step in the middle, a warm-up with τ_c = T/20 "
         "and the temperature column, chosen under the fit of axis wx; a valid bound is exceeded at most γ "
-        "of the time.",
+        "of the time. The three rows agree: the white variance is estimated far more precisely than the "
+        "walk's, so to first order each bound is exceeded when the walk's own bound σ̂_q² + Φ̄⁻¹(γ) se(σ̂_q²) "
+        "is below σ_q², whatever the weights.",
         "",
         "| duration | weights | " + " | ".join(f"γ = {g:g}" for g in COVERAGE_GAMMAS) + " |",
         "|---|---|" + "---|" * len(COVERAGE_GAMMAS),
