@@ -8,8 +8,9 @@ For each size a seeded axis of white + rate random walk + 1/f (d = 0.5) + first-
 at 100 Hz is drawn (:func:`carousel_theory.simulate.sample_noise`). Timed, once each, in this process:
 ``allantools.oadev`` at octave τ (``data_type="freq"``) and ``carousel_theory.fitting.fit_noise_model``
 with each requested component set (the fit includes its own overlapping Allan variance). Prints the
-wall times, the ratio fit / allantools (the target is ≤ 3), and the same ratio of CPU times of this
-process (steadier on a shared machine). With ``--records K`` K records of each size are drawn and timed
+wall times, the ratio fit / allantools (the target is ≤ 3), the same ratio of CPU times of this
+process (steadier on a shared machine), and the fit's χ² test (the model is the one drawn, so it should
+not be rejected). With ``--records K`` K records of each size are drawn and timed
 in turn: the first fit of the process also pays its one-time work (caches of Gauss rules, windows and
 lambdified closed forms), the later ones are what a session fitting many axes pays per axis (each
 record's pair structure is still built anew); the first ratio and the median of the later ones are
@@ -62,11 +63,11 @@ def _timed(function):
 
 
 def _timed_both(function):
-    """(wall time, CPU time of this process) of one call: on a shared machine the CPU time is the steadier
-    of the two (the wall time also counts the other processes' turns)."""
+    """(wall time, CPU time of this process, its result) of one call: on a shared machine the CPU time is
+    the steadier of the two (the wall time also counts the other processes' turns)."""
     wall, cpu = time.perf_counter(), time.process_time()
-    function()
-    return time.perf_counter() - wall, time.process_time() - cpu
+    result = function()
+    return time.perf_counter() - wall, time.process_time() - cpu, result
 
 
 def _dense_check(size: int, rng: np.random.Generator) -> None:
@@ -161,16 +162,17 @@ def _timed_records(args: argparse.Namespace, size: int, rng: np.random.Generator
     ratios: dict[str, list[float]] = {text: [] for text in args.models}
     for record in range(args.records):
         y = sample_noise(TRUTH, size, rng=rng)
-        peer, peer_cpu = _timed_both(
+        peer, peer_cpu, _ = _timed_both(
             lambda y=y: allantools.oadev(y, rate=100.0, data_type="freq", taus="octave")
         )
         for text in args.models:
             components = tuple(text.split(","))
-            fit, fit_cpu = _timed_both(lambda c=components, y=y: fit_noise_model(y, 100.0, c))
+            fit, fit_cpu, result = _timed_both(lambda c=components, y=y: fit_noise_model(y, 100.0, c))
             ratios[text].append(fit_cpu / peer_cpu)
             print(
                 f"{size:>10} {record + 1:>7} {text:>22} {fit:>9.2f} {peer:>15.2f} {fit / peer:>15.2f} "
-                f"{fit_cpu / peer_cpu:>19.2f}"
+                f"{fit_cpu / peer_cpu:>19.2f}   χ² {result.chi_square:.3g} on {result.degrees_of_freedom}, "
+                f"p = {result.p_value:.2g}"
             )
             if args.breakdown:
                 _breakdown(y, components)

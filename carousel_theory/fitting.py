@@ -13,13 +13,16 @@ model-based C the weights do not depend on the noise in each point, which avoids
 weighting with the observed Allan variance. Standard errors: the diagonal of (JᵀC⁻¹J)⁻¹; a fitted d is
 profiled and enters J through ∂(Aθ)/∂d. A parameter at zero is reported in ``at_bound``.
 
-AR short noise: the coefficients are estimated before the GLS by Yule–Walker (Levinson–Durbin) on the
-record with its slow part removed by a centred moving average of 10 s (at least 1001 samples); the
-order is the largest p ≤ ``ar_order`` whose partial autocorrelation exceeds 4/√n. Only the innovation
-variance is fitted by GLS. Give ``ar_coefficients`` to fix them. Yule–Walker sees the whole short noise:
-with "ar" the short noise is meant to be the AR process alone (as in the closed loop, where it replaces
-white noise); "white" and "ar" together with estimated coefficients describe white + AR by an AR of
-higher order and the two columns are nearly collinear, so give the coefficients in that case.
+AR short noise: the coefficients are estimated before the GLS from the record with its slow part
+removed (:mod:`carousel_theory.autoregression`), and only the innovation variance is fitted by GLS; give
+``ar_coefficients`` to fix them. With "ar" alone the AR process is the whole short noise (as in the
+closed loop, where it replaces white noise): Yule–Walker, order the largest p ≤ ``ar_order`` whose
+partial autocorrelation exceeds 4/√n. With "white" and "ar" the short noise is white + AR(p): the
+high-order Yule–Walker equations, which white noise does not reach (plain Yule–Walker fits the sum, an
+ARMA process, whose AR term's Allan variance is not the data's), or plain Yule–Walker when its
+coefficients describe the record's autocovariance better (a sensor's internal filter colours all its
+white noise); :func:`carousel_theory.autoregression.short_noise_coefficients`. A record whose lags
+show no correlation is refused with a pointer to the model without "ar".
 
 Typed API (for ``fit`` and for the closed loop)
     :func:`observe_allan` → :class:`ObservedAllan` (compute once per record, reuse for every fit);
@@ -43,7 +46,6 @@ from typing import Any
 
 import numpy as np
 from scipy import stats
-from scipy.linalg import solve_toeplitz
 from scipy.optimize import minimize_scalar, nnls
 
 from carousel_theory import units
@@ -54,6 +56,7 @@ from carousel_theory._validation import (
     check_positive_real,
 )
 from carousel_theory.allan import AllanResult, allan_variance, check_tau_range, with_model_intervals
+from carousel_theory.autoregression import short_noise_coefficients, yule_walker
 from carousel_theory.formulas import formula
 from carousel_theory.increment_sums import squared_rising_factorial_sum
 from carousel_theory.noise_model import NoiseModel, term_allan_variance
@@ -359,36 +362,10 @@ class FitOptions:
         check_positive_integer("minimum_clusters", self.minimum_clusters, minimum=2)
         check_positive_integer("iterations", self.iterations)
         check_tau_range(self.tau_range)  # an open end (None) is 0 or ∞
-
-
-# --- AR coefficients ---------------------------------------------------------------------------------
-
-
-def yule_walker(x: Any, sample_rate: float, maximum_order: int) -> tuple[float, ...]:
-    """AR coefficients by Yule–Walker on ``x`` with its slow part removed (module text); () for order 0.
-
-    The high-pass is a centred moving average of max(1001, 10 s) samples (a shorter one biases the lag
-    covariances by about −(long-run variance)/window); the order is the largest p ≤ ``maximum_order``
-    whose partial autocorrelation (the last Levinson–Durbin coefficient) exceeds 4/√n.
-    """
-    from scipy.ndimage import uniform_filter1d
-
-    samples = check_finite_array("x", x, min_length=3)
-    window = max(1001, round(10 * float(sample_rate)) | 1)
-    fast = samples - uniform_filter1d(samples, window, mode="nearest")
-    n = len(fast)
-    lags = range(min(maximum_order, n - 1) + 1)  # Σ_t x_t x_{t+k} / n, only the lags Levinson–Durbin needs
-    autocovariance = np.array([np.einsum("i,i->", fast[: n - k], fast[k:]) for k in lags]) / n
-    autocovariance = np.concatenate((autocovariance, np.zeros(maximum_order + 1 - len(autocovariance))))
-    order = 0
-    for p in range(1, maximum_order + 1):
-        coefficients = solve_toeplitz(autocovariance[:p], autocovariance[1 : p + 1])
-        if abs(coefficients[-1]) > 4.0 / math.sqrt(n):
-            order = p
-    if order == 0:
-        return ()
-    coefficients = solve_toeplitz(autocovariance[:order], autocovariance[1 : order + 1])
-    return tuple(float(c) for c in coefficients)
+        if self.ar_coefficients is not None and not len(self.ar_coefficients):
+            raise ValueError(
+                "ar_coefficients=(): must hold at least one coefficient (AR(0) is white noise: use 'white')"
+            )
 
 
 # --- the GLS ---------------------------------------------------------------------------------------
@@ -489,7 +466,29 @@ def _ar_coefficients(observed: ObservedAllan, options: FitOptions) -> tuple[floa
             "observed: the AR coefficients are estimated from the record; observe it with "
             "keep_record=True or give FitOptions(ar_coefficients=...)"
         )
-    return yule_walker(observed.ar_source, observed.sample_rate, options.ar_order)
+    beside_white = "white" in options.components
+    estimator = short_noise_coefficients if beside_white else yule_walker
+    coefficients = estimator(observed.ar_source, observed.sample_rate, options.ar_order)
+    if not coefficients:
+        rule = (
+            "no autocovariance at lags ≥ 1 exceeds 4 γ(0)/√n"
+            if beside_white
+            else f"no partial autocorrelation up to order {options.ar_order} exceeds 4/√n"
+        )
+        raise ValueError(
+            f"y: no short correlated noise in the record ({rule}); fit without 'ar' "
+            "(its short noise is white) or give ar_coefficients"
+        )
+    return coefficients
+
+
+def _ar_method(options: FitOptions, ar: tuple[float, ...]) -> str:
+    if "ar" not in options.components:
+        return ""
+    if options.ar_coefficients is not None:
+        return f", AR({len(ar)}) coefficients given"
+    beside = " (white + AR: the better of plain and high-order)" if "white" in options.components else ""
+    return f", AR({len(ar)}) coefficients by Yule–Walker{beside}"
 
 
 def _profile_d(problem: _Problem, cholesky: np.ndarray, d: float) -> float:
@@ -621,7 +620,7 @@ def fit_observed(
         f"({tau_used[0]:.4g} s … {tau_used[-1]:.4g} s), model-based covariance across τ, "
         f"{options.iterations} iterations"
         + (", 1/f order d profiled" if problem.fit_d else "")
-        + (f", AR({len(ar)}) coefficients by Yule–Walker" if "ar" in options.components else "")
+        + _ar_method(options, ar)
     )
     return FitResult(
         model=model,

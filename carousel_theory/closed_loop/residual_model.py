@@ -9,7 +9,7 @@ bias + short noise (white, or for the ``colored_noise`` effect an autoregressive
 x_t = Σ a_j x_{t−j} + e_t in place of the white noise) + rate random walk (eq. (2)) + an optional 1/f
 term of order d = 1/2 (eq. (3)). The fit is :func:`carousel_theory.fitting.fit_observed`: generalised
 least squares on the non-overlapping Allan variance at octave τ (eq. (20)) with the model-based
-covariance across τ, AR coefficients by :func:`carousel_theory.fitting.yule_walker`.
+covariance across τ, AR coefficients by :func:`carousel_theory.autoregression.yule_walker`.
 """
 
 from __future__ import annotations
@@ -22,8 +22,9 @@ import numpy as np
 from scipy import stats
 
 from carousel_theory import units
+from carousel_theory.autoregression import yule_walker
 from carousel_theory.closed_loop.flicker_blocks import flicker_block_sums
-from carousel_theory.fitting import FitOptions, FitResult, fit_observed, observe_allan, yule_walker
+from carousel_theory.fitting import FitOptions, FitResult, fit_observed, observe_allan
 from carousel_theory.noise_model import NoiseModel, ar_autocovariance, term_allan_variance
 from carousel_theory.processes import fractionally_integrate, sample_flicker
 from carousel_theory.propagation import repeated_weights_bin_variances, weighted_sum_variance
