@@ -28,7 +28,17 @@ Allan variance with χ² = 30 on 14 degrees of freedom against 1.2·10⁴), whil
 Gauss–Markov term needs the high-order equations. Both candidates are scored on the record's own
 autocovariance at lags 0 … J by the model both stand for, γ(k) = v g_φ(k) + σ² [k = 0] (g_φ the AR
 autocovariance at unit innovation variance, v and σ² ≥ 0 by non-negative least squares), and the
-closer one is kept; candidates that are not stationary are dropped.
+closer one is kept; candidates that are not stationary are dropped. The high-pass lowers every γ̂(k),
+k ≪ W, by about the long-run variance over W (W the moving average's length; the boxcar's mean of γ
+around k): for a Gauss–Markov term of correlation time τ_c that is 2τ_c/W of γ(0), enough to bias φ
+(φ = 0.95 at 10⁶ samples: 0.941, χ² = 70 on 16 degrees of freedom). The offset is added back from the
+chosen white + AR model's long-run variance σ² + v/(1 − Σφ)² and the choice redone (OFFSET_ROUNDS times).
+Measured over 12 records of 10⁶ samples at 100 Hz, white variance 3.6·10⁻⁵, AR long-run variance 10⁻⁴:
+for φ = 0.5, 0.8, 0.9, 0.95 the mean is within one standard deviation (0.0015–0.0028) of φ (at φ = 0.5
+the high-order AR(1) is chosen on 9 records, plain Yule–Walker's AR(4) on 3; elsewhere always AR(1));
+at φ = 0.99
+(τ_c = 1 s against W = 10 s, where the first-order correction no longer suffices) the mean is 0.977 and
+the spread 0.013.
 """
 
 from __future__ import annotations
@@ -45,6 +55,7 @@ from carousel_theory._validation import check_finite_array, check_positive_integ
 from carousel_theory.noise_model import ar_autocovariance
 
 __all__ = [
+    "high_pass_window",
     "high_passed_autocovariance",
     "short_noise_coefficients",
     "yule_walker",
@@ -53,16 +64,22 @@ __all__ = [
 
 #: Equations of the high-order Yule–Walker system per unit of the maximum order.
 EQUATIONS_PER_ORDER = 4
+#: Rounds of adding the high-pass's offset back (module text); the coefficients settle to 4 digits in 2.
+OFFSET_ROUNDS = 3
 #: Standard deviations a sample autocovariance or an equation's residual may reach by chance.
 THRESHOLD = 4.0
+
+
+def high_pass_window(sample_rate: float) -> int:
+    """W = max(1001, 10 s) samples, odd: the centred moving average removed before the autocovariance."""
+    return max(1001, round(10 * float(sample_rate)) | 1)
 
 
 def high_passed_autocovariance(x: Any, sample_rate: float, lags: int) -> tuple[np.ndarray, int]:
     """(γ̂(0 … lags) of ``x`` less its centred moving average of max(1001, 10 s) samples, n); lags the
     record does not reach are 0."""
     samples = check_finite_array("x", x, min_length=3)
-    window = max(1001, round(10 * float(sample_rate)) | 1)
-    fast = samples - uniform_filter1d(samples, window, mode="nearest")
+    fast = samples - uniform_filter1d(samples, high_pass_window(sample_rate), mode="nearest")
     n = len(fast)
     reached = range(min(lags, n - 1) + 1)
     autocovariance = np.array([np.einsum("i,i->", fast[: n - k], fast[k:]) for k in reached]) / n
@@ -120,14 +137,27 @@ def _beside_white(autocovariance: np.ndarray, n: int, maximum_order: int) -> tup
 def short_noise_coefficients(x: Any, sample_rate: float, maximum_order: int) -> tuple[float, ...]:
     """AR coefficients for a model with white + AR short noise (module text): of :func:`yule_walker` and
     :func:`yule_walker_beside_white`, those whose white + AR autocovariance v g_φ(k) + σ² [k = 0] (v, σ² ≥ 0
-    by non-negative least squares) is closer to the record's at lags 0 … J; () when neither finds any."""
+    by non-negative least squares) is closer to the record's at lags 0 … J, with the high-pass's offset
+    added back; () when neither finds any."""
     check_positive_integer("maximum_order", maximum_order)
     autocovariance, n = high_passed_autocovariance(x, sample_rate, _beside_white_lags(maximum_order))
+    coefficients = _closer(autocovariance, n, maximum_order)
+    for _ in range(OFFSET_ROUNDS):
+        if not coefficients:
+            break
+        _, long_run = _white_and_ar_fit(autocovariance, coefficients)
+        offset = long_run / high_pass_window(sample_rate)
+        coefficients = _closer(autocovariance + offset, n, maximum_order)
+    return coefficients
+
+
+def _closer(autocovariance: np.ndarray, n: int, maximum_order: int) -> tuple[float, ...]:
+    """Of the plain and the high-order coefficients, those whose white + AR model is closer."""
     whole = _plain(autocovariance, n, maximum_order)
     beside = _beside_white(autocovariance, n, maximum_order)
     if not whole or not beside or not _stationary(beside):
         return whole or (beside if _stationary(beside) else ())
-    misfit = [_white_and_ar_misfit(autocovariance, coefficients) for coefficients in (whole, beside)]
+    misfit = [_white_and_ar_fit(autocovariance, coefficients)[0] for coefficients in (whole, beside)]
     return beside if misfit[1] < misfit[0] else whole
 
 
@@ -136,10 +166,13 @@ def _stationary(coefficients: tuple[float, ...]) -> bool:
     return not coefficients or bool(np.all(np.abs(np.roots((1.0, *(-c for c in coefficients)))) < 1.0))
 
 
-def _white_and_ar_misfit(autocovariance: np.ndarray, coefficients: tuple[float, ...]) -> float:
-    """Residual norm of γ̂(k) ≈ v g_φ(k) + σ² [k = 0], v, σ² ≥ 0, g_φ the unit-innovation AR autocovariance."""
+def _white_and_ar_fit(autocovariance: np.ndarray, coefficients: tuple[float, ...]) -> tuple[float, float]:
+    """(residual norm, long-run variance σ² + v/(1 − Σφ)²) of γ̂(k) ≈ v g_φ(k) + σ² [k = 0], v, σ² ≥ 0 by
+    non-negative least squares, g_φ the AR autocovariance at unit innovation variance."""
     design = np.zeros((len(autocovariance), 2))
     design[:, 0] = ar_autocovariance(coefficients, len(autocovariance))
     design[0, 1] = 1.0
     scale = np.linalg.norm(design, axis=0)
-    return float(nnls(design / scale, autocovariance)[1])
+    solution, residual = nnls(design / scale, autocovariance)
+    innovation, white = solution / scale
+    return float(residual), float(white + innovation / (1.0 - sum(coefficients)) ** 2)
