@@ -15,6 +15,8 @@ coefficient of 0.95 that the uncorrected equations put below 0.945.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -124,3 +126,15 @@ def test_the_high_pass_offset_is_added_back_for_a_long_correlation_time():
     allowed = 3 * 0.0018 / np.sqrt(8)
     assert abs(np.mean([c[0] for c in corrected]) - 0.95) <= allowed
     assert np.mean(uncorrected) < 0.95 - allowed  # without the offset: biased low
+
+
+def test_the_fit_benchmark_model_is_not_rejected():
+    # White + RRW + 1/f + Gauss–Markov (benchmarks/bench_fit_vs_allantools.py): with plain Yule–Walker's
+    # coefficients the fit's χ² was 700–800 on 14 degrees of freedom at 10⁶ samples.
+    truth = replace(_white_and_ar((0.8,)), flicker_variance=1e-9, flicker_d=0.5)
+    y = sample_noise(truth, 400_000, rng=np.random.default_rng(30))
+    result = fit_noise_model(y, 100.0, ("white", "rrw", "flicker", "ar"))
+    assert result.model.ar_coefficients[0] == pytest.approx(0.8, abs=0.012)
+    assert result.p_value > 1e-3
+    error = result.standard_errors["white_variance"]
+    assert abs(result.model.white_variance - truth.white_variance) <= Z * error
