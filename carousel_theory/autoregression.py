@@ -66,6 +66,8 @@ __all__ = [
 EQUATIONS_PER_ORDER = 4
 #: Rounds of adding the high-pass's offset back (module text); the coefficients settle to 4 digits in 2.
 OFFSET_ROUNDS = 3
+#: A high-passed record whose RMS is below this fraction of the record's is constant to rounding.
+CONSTANT_LEVEL = 1e-12
 #: Standard deviations a sample autocovariance or an equation's residual may reach by chance.
 THRESHOLD = 4.0
 
@@ -77,12 +79,14 @@ def high_pass_window(sample_rate: float) -> int:
 
 def high_passed_autocovariance(x: Any, sample_rate: float, lags: int) -> tuple[np.ndarray, int]:
     """(γ̂(0 … lags) of ``x`` less its centred moving average of max(1001, 10 s) samples, n); lags the
-    record does not reach are 0."""
+    record does not reach are 0, and all are 0 for a record constant to rounding."""
     samples = check_finite_array("x", x, min_length=3)
     fast = samples - uniform_filter1d(samples, high_pass_window(sample_rate), mode="nearest")
     n = len(fast)
     reached = range(min(lags, n - 1) + 1)
     autocovariance = np.array([np.einsum("i,i->", fast[: n - k], fast[k:]) for k in reached]) / n
+    if autocovariance[0] <= CONSTANT_LEVEL**2 * float(np.mean(samples**2)):
+        autocovariance[:] = 0.0  # constant to rounding: the high-pass leaves only its own rounding
     return np.concatenate((autocovariance, np.zeros(lags + 1 - len(autocovariance)))), n
 
 
@@ -93,6 +97,8 @@ def yule_walker(x: Any, sample_rate: float, maximum_order: int) -> tuple[float, 
 
 
 def _plain(autocovariance: np.ndarray, n: int, maximum_order: int) -> tuple[float, ...]:
+    if not autocovariance[0] > 0:  # a constant record: nothing to correlate
+        return ()
     order = 0
     for p in range(1, maximum_order + 1):
         coefficients = solve_toeplitz(autocovariance[:p], autocovariance[1 : p + 1])
@@ -119,6 +125,8 @@ def _beside_white_lags(maximum_order: int) -> int:
 
 def _beside_white(autocovariance: np.ndarray, n: int, maximum_order: int) -> tuple[float, ...]:
     equations = EQUATIONS_PER_ORDER * maximum_order
+    if not autocovariance[0] > 0:
+        return ()
     if np.max(np.abs(autocovariance[1 : equations + 1])) <= THRESHOLD * autocovariance[0] / math.sqrt(n):
         return ()
     spread = math.sqrt((autocovariance[0] ** 2 + 2.0 * np.sum(autocovariance[1:] ** 2)) / n)

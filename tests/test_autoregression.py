@@ -61,6 +61,11 @@ def test_high_order_equations_find_nothing_in_white_noise():
     assert yule_walker_beside_white(y, 100.0, 4) == ()
 
 
+def test_a_constant_record_has_no_ar_coefficients():
+    for estimator in (yule_walker, yule_walker_beside_white, short_noise_coefficients):
+        assert estimator(np.full(5_000, 0.01), 100.0, 4) == ()
+
+
 def test_white_and_ar_fit_is_not_rejected_and_recovers_both_variances():
     truth = _white_and_ar((0.8,))
     y = sample_noise(truth, 400_000, rng=np.random.default_rng(24))
