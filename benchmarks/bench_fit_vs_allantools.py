@@ -12,9 +12,12 @@ wall times, the ratio fit / allantools (the target is ≤ 3), the same ratio of 
 process (steadier on a shared machine), and the fit's χ² test (the model is the one drawn, so it should
 not be rejected). With ``--records K`` K records of each size are drawn and timed
 in turn: the first fit of the process also pays its one-time work (caches of Gauss rules, windows and
-lambdified closed forms), the later ones are what a session fitting many axes pays per axis (each
-record's pair structure is still built anew); the first ratio and the median of the later ones are
-printed. With ``--breakdown`` each fit is run once more and its CPU time is
+lambdified closed forms, and the pairs' structure), the later ones are what a session fitting many axes
+pays per axis (the structure is kept for the next record of the same length whose AR reach rounds to
+the same multiple of 32 lags, :mod:`carousel_theory.lag_quadrature`); the first ratio and the median of
+the later ones are printed. A fit stops re-evaluating its covariance across τ once a step moved no
+parameter by more than 0.05 of its standard error, so later records differ in the evaluations they take
+(shown in the fit's method text, not here). With ``--breakdown`` each fit is run once more and its CPU time is
 split into the τ-covariances (the pairs' structure, the values at exact lags and Gauss nodes, the sums
 and the rest) and everything else.
 

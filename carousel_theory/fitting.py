@@ -8,7 +8,9 @@ coefficients the model Allan variance is linear in the driving variances,
 stationary curves of :mod:`carousel_theory.noise_model`. The estimate minimises
 (â − Aθ)ᵀ C⁻¹ (â − Aθ) under θ ≥ 0, where C is the covariance of the estimates across τ computed from the
 current model by :mod:`carousel_theory.tau_covariance` (exact and independent of the record length for
-white, RRW and quantization; finite lag sums for 1/f and AR), iterated from a diagonal start. With a
+white, RRW and quantization; finite lag sums for 1/f and AR), iterated from a diagonal start until a
+step moves no parameter by more than ``tolerance`` (0.05) of its standard error, at most ``iterations``
+times (the closed loop, whose false-alarm rates were measured that way, always takes three). With a
 model-based C the weights do not depend on the noise in each point, which avoids the downward bias of
 weighting with the observed Allan variance. Standard errors: the diagonal of (JᵀC⁻¹J)⁻¹; a fitted d is
 profiled and enters J through ∂(Aθ)/∂d. A parameter at zero is reported in ``at_bound``.
@@ -83,6 +85,8 @@ __all__ = [
 ]
 
 COMPONENTS = ("white", "rrw", "flicker", "quantization", "ar")
+#: Standard errors a GLS step may move each parameter by and count as settled (FitOptions.tolerance).
+DEFAULT_TOLERANCE = 0.05
 #: Parameter name of each component in :class:`NoiseModel`.
 _PARAMETER = {
     "white": "white_variance",
@@ -337,7 +341,10 @@ class FitOptions:
     minimum_clusters : int
         Only τ with at least this many disjoint clusters in the record enter the fit.
     iterations : int
-        Re-evaluations of the model-based covariance C.
+        Most re-evaluations of the model-based covariance C.
+    tolerance : float or None
+        Stop re-evaluating C once a GLS step moved no parameter by more than this many of its standard
+        errors (None: always ``iterations``).
     """
 
     components: tuple[str, ...] = ("white", "rrw")
@@ -347,6 +354,7 @@ class FitOptions:
     tau_range: tuple[float | None, float | None] | None = None
     minimum_clusters: int = 3
     iterations: int = 3
+    tolerance: float | None = DEFAULT_TOLERANCE
 
     def __post_init__(self) -> None:
         components = self.components
@@ -361,6 +369,8 @@ class FitOptions:
         check_positive_integer("ar_order", self.ar_order)
         check_positive_integer("minimum_clusters", self.minimum_clusters, minimum=2)
         check_positive_integer("iterations", self.iterations)
+        if self.tolerance is not None:
+            object.__setattr__(self, "tolerance", float(check_positive_real("tolerance", self.tolerance)))
         check_tau_range(self.tau_range)  # an open end (None) is 0 or ∞
         if self.ar_coefficients is not None and not len(self.ar_coefficients):
             raise ValueError(
@@ -482,6 +492,17 @@ def _ar_coefficients(observed: ObservedAllan, options: FitOptions) -> tuple[floa
     return coefficients
 
 
+def _iterations_method(solution: _Solution, options: FitOptions, fixed: bool) -> str:
+    if fixed:
+        return "held at the given one"
+    if solution.settled:
+        return (
+            f"{solution.evaluations} iterations (the last moved no parameter by more than "
+            f"{options.tolerance:g} of its standard error)"
+        )
+    return f"{solution.evaluations} iterations"
+
+
 def _ar_method(options: FitOptions, ar: tuple[float, ...]) -> str:
     if "ar" not in options.components:
         return ""
@@ -503,30 +524,67 @@ def _profile_d(problem: _Problem, cholesky: np.ndarray, d: float) -> float:
     return float(minimize_scalar(objective, bounds=(0.02, 0.98), method="bounded", options={"xatol": 1e-4}).x)
 
 
+@dataclass(frozen=True)
+class _Solution:
+    """The iterated GLS's end: θ, d, the C it used, χ², and the covariance evaluations it took."""
+
+    theta: np.ndarray
+    d: float
+    covariance: np.ndarray
+    chi_square: float
+    evaluations: int
+    settled: bool
+
+
 def _solve(
-    problem: _Problem, d: float, iterations: int, fixed_covariance: np.ndarray | None
-) -> tuple[np.ndarray, float, np.ndarray, float]:
-    """Iterated GLS: (θ, d, C, χ²). C starts diagonal (white-noise degrees of freedom of the data)."""
+    problem: _Problem, d: float, options: FitOptions, fixed_covariance: np.ndarray | None
+) -> _Solution:
+    """Iterated GLS. C starts diagonal (white-noise degrees of freedom of the data) and is re-evaluated
+    at most ``options.iterations`` times; with ``options.tolerance`` it stops once the last step moved no
+    parameter by more than that many of its standard errors."""
+    iterations = 1 if fixed_covariance is not None else options.iterations
     if fixed_covariance is not None:
-        covariance, iterations = fixed_covariance, 1
+        covariance = fixed_covariance
     else:
         degrees = np.maximum(_white_edf(problem), 1.0)
         covariance = np.diag(2.0 * problem.observed**2 / degrees)
-    theta = np.zeros(len(problem.components))
+    previous: tuple[np.ndarray, float] | None = None
     for iteration in range(iterations + 1):
         cholesky = np.linalg.cholesky(covariance)
         d = _profile_d(problem, cholesky, d)
-        design = _design(problem, d)
-        theta, chi_square, _ = _generalized_least_squares(design, problem.observed, cholesky)
-        if iteration == iterations or fixed_covariance is not None or not np.any(theta > 0):
+        theta, chi_square, _ = _generalized_least_squares(_design(problem, d), problem.observed, cholesky)
+        settled = previous is not None and _settled(problem, previous, (theta, d), covariance, options)
+        if iteration == iterations or fixed_covariance is not None or not np.any(theta > 0) or settled:
             break
+        previous = (theta, d)
         model = _model_with(
             problem.sample_rate, 0.0, dict(zip(problem.components, theta, strict=True)), d, problem.ar
         )
         covariance = allan_estimate_covariance(
             model, problem.sizes, problem.length, estimator=problem.estimator, bound=False
         ).covariance
-    return theta, d, covariance, chi_square
+    return _Solution(theta, d, covariance, chi_square, iteration, settled)
+
+
+def _settled(
+    problem: _Problem,
+    previous: tuple[np.ndarray, float],
+    current: tuple[np.ndarray, float],
+    covariance: np.ndarray,
+    options: FitOptions,
+) -> bool:
+    """Did the last GLS step move every parameter (θ, and d when fitted) by at most ``options.tolerance``
+    of its standard error under ``covariance``?"""
+    if options.tolerance is None:
+        return False
+    theta, d = current
+    _, parameter_covariance = _parameter_covariance(problem, theta, d, covariance)
+    errors = np.sqrt(np.maximum(np.diag(parameter_covariance), 0.0))
+    change = np.abs(theta - previous[0])
+    if problem.fit_d:
+        change = np.append(change, abs(d - previous[1]))
+    moved = change > 0
+    return bool(np.all(change[moved] <= options.tolerance * errors[moved]))
 
 
 def _white_edf(problem: _Problem) -> np.ndarray:
@@ -607,7 +665,8 @@ def fit_observed(
         _fits_d(options),
     )
     start_d = 0.5 if options.flicker_d is None else options.flicker_d
-    theta, d, covariance, chi_square = _solve(problem, start_d, options.iterations, fixed_covariance)
+    solution = _solve(problem, start_d, options, fixed_covariance)
+    theta, d, covariance, chi_square = solution.theta, solution.d, solution.covariance, solution.chi_square
     names, parameter_covariance = _parameter_covariance(problem, theta, d, covariance)
     values = dict(zip(options.components, theta, strict=True))
     model = _model_with(observed.sample_rate, observed.mean, values, d, ar)
@@ -618,7 +677,7 @@ def fit_observed(
     method = (
         f"generalized least squares on the {allan.estimator} Allan variance at {int(used.sum())} octave τ "
         f"({tau_used[0]:.4g} s … {tau_used[-1]:.4g} s), model-based covariance across τ, "
-        f"{options.iterations} iterations"
+        + _iterations_method(solution, options, fixed_covariance is not None)
         + (", 1/f order d profiled" if problem.fit_d else "")
         + _ar_method(options, ar)
     )
@@ -652,6 +711,7 @@ def fit_noise_model(
     ar_order: int = 4,
     ar_coefficients: tuple[float, ...] | None = None,
     minimum_clusters: int = 3,
+    tolerance: float | None = DEFAULT_TOLERANCE,
 ) -> FitResult:
     """Identify a noise model from rate samples by GLS on the octave Allan variance (see the module text).
 
@@ -670,15 +730,16 @@ def fit_noise_model(
         either end may be None (open), e.g. ``(0.1, None)``.
     estimator : {"overlapping", "non-overlapping"}
         The Allan variance estimator fitted.
-    iterations : int
-        Re-evaluations of the model-based covariance C.
+    iterations, tolerance
+        Most re-evaluations of the model-based covariance C; stop once a step moved no parameter by more
+        than ``tolerance`` standard errors (None: always ``iterations``).
     confidence : float
         Level of the intervals of the returned Allan variance.
     ar_order, ar_coefficients, minimum_clusters
         See :class:`FitOptions`.
     """
     options = FitOptions(
-        components, flicker_d, ar_order, ar_coefficients, tau_range, minimum_clusters, iterations
+        components, flicker_d, ar_order, ar_coefficients, tau_range, minimum_clusters, iterations, tolerance
     )
     observed = observe_allan(y, sample_rate, estimator=estimator, keep_record="ar" in options.components)
     check_noise_signal(y, "y")

@@ -67,12 +67,24 @@ bound for c = Σ_a θ_a c_a) are the two halves of :func:`counted_square_sums`; 
 sums alone (a fit's weights) skips the bound (``bounds=False``: no far-tail remainders, no derivative
 bounds, the same sums).
 
-Rounding is not in the bound: where the support is wider, the nine-term sum of H loses about (m_j/m_i)²
-ulps of Σ|w_q H|, which from half a width to FAR widths out is 10⁶–10⁸ times |c|; the tests hold the whole
-to the bound plus 1e-11 relative. That allowance has little room: at d ≈ 0.77 and m_j/m_i = 16 the
-rounding of c 2–3 widths out (10⁻⁹–10⁻⁸ of c) moves the sum by about 1e-11 relative when the plan moves
-which lags are exact (measured 1.04e-11 with an exact zone widened from 120 to 136 lags), so the plan is
-kept a function of each model's own reach rather than shared across nearby reaches.
+Rounding is not in the bound. A nine-term value of c carries the rounding of Σ_q w_q H(q − δ), a few ulps
+of Σ_q |w_q H(q − δ)|, which from half a width to FAR widths out is 10⁶–10⁸ times |c|; a direct value
+(positive weights, γ_z of one sign outside the support) about len(W) ulps of |c|; the Newton series a few
+ulps of |c|. :func:`rounding_allowances` turns that into an allowance on each pair's sum,
+Σ N (2|c| ρ + ρ²) over the exact lags and the Gauss nodes (N times the node's weight), with
+ρ = ROUNDING_ULPS · u · S, S = Σ_q |w_q H| at a nine-term value, len(W)·|c| at a direct one and |c| in the
+far tail (u the unit roundoff). Measured: one nine-term value differs from the direct sum by up to about
+25 ulps of Σ_q |w_q H| (d = 0.875, m_i = 50, m_j/m_i = 16: H itself carries several ulps), hence
+ROUNDING_ULPS = 64; the quadrature's difference from the every-lag sum beyond the proved bound reaches
+1.7 times the allowance taken at one ulp (about 2,500 random pairs, d from 0.02 to 0.98, m_j/m_i up to
+16); the every-lag sum itself is within 1e-13 of one taking c outside the support from the direct sum. A fixed 1e-11 relative allowance is not enough: at d ≈ 0.77, m_j/m_i = 16 the sum moves by
+1.04e-11 relative when the plan changes which lags are exact, and at d ≈ 0.92, m_i = 50, m_j/m_i = 16 by
+1.04e-11 with the plan unchanged.
+
+The exact zone grows with the AR reach; :meth:`LagModel.of` rounds the reach up to a multiple of
+``REACH_STEP`` lags (γ_z is 0 beyond the AR truncation, so a longer reach only adds exact zeros), so that
+the records of one sensor, whose estimated AR coefficients differ in the third digit, share one plan
+(:func:`pair_batch`).
 """
 
 from __future__ import annotations
@@ -110,6 +122,8 @@ __all__ = [
     "LagModel",
     "counted_square_sum",
     "counted_square_sums",
+    "rounding_allowances",
+    "rounding_scales",
 ]
 
 #: Beyond FAR support widths from the support, c comes from the Newton series of γ_z (the nine-term sum
@@ -117,6 +131,10 @@ __all__ = [
 #: 2.8 widths, measured for m_i = 8, m_j = 128).
 FAR = 4
 _NEWTON_TERMS = 24
+#: Ulps of the scale S of each value of c allowed for its rounding (module text: Rounding).
+ROUNDING_ULPS = 64
+#: The finite terms' reach is rounded up to a multiple of this many lags (module text).
+REACH_STEP = 32
 #: Pairs whose support is at most this wide take c at integer lags from Σ_u W(u) γ_z(δ + u) directly.
 _DIRECT_WIDTH = 256
 
@@ -138,6 +156,7 @@ class LagModel:
     def of(cls, model: NoiseModel) -> LagModel:
         terms = model.terms()
         reach = max(3, ar_increment_reach(tuple(model.ar_coefficients))) if "ar" in terms else 3
+        reach = -(-reach // REACH_STEP) * REACH_STEP if "ar" in terms else reach
         gamma = np.zeros(reach + 1)
         for name in ("white", "rrw", "quantization", "ar"):
             if name in terms:
@@ -819,10 +838,56 @@ def counted_square_sums(
     return combined_sums(batch, [term_values(batch, lag_model, bounds=bounds)], [1.0], bounds=bounds)
 
 
-@functools.lru_cache(maxsize=2)
+@functools.lru_cache(maxsize=4)
 def pair_batch(pairs: tuple[tuple[int, int, int, int], ...], reach: int, flicker: bool) -> PairBatch:
     """:meth:`PairBatch.of` with its gathers built, kept for the next covariance of the same pairs (a fit's
-    iterations)."""
+    iterations, the next record of the same length and AR reach; four kept: a fit uses one for its τ and
+    one for the intervals at every τ, and a term fitted at zero changes the key)."""
     batch = PairBatch.of(pairs, reach, flicker)
     _ = (batch.lag_gather, batch.node_gather)
     return batch
+
+
+def rounding_scales(
+    pairs: _Pairs,
+    lag_model: LagModel,
+    owner: np.ndarray,
+    lags: np.ndarray,
+    values: np.ndarray,
+) -> np.ndarray:
+    """S at each lag (module text: Rounding): Σ_q |w_q H(q − δ)| where c is the nine-term sum,
+    len(W)·|c| where it is the direct sum, |c| in the far tail."""
+    _, _, direct, near = _partition(pairs, lag_model, owner, lags)
+    scales = np.abs(values)
+    scales[direct] *= (2 * pairs.m_i + 2 * pairs.m_j - 3)[owner[direct]]
+    if np.any(near):
+        terms = lag_model.fourth_sum(pairs.positions[owner[near]] - lags[near][:, None])
+        scales[near] = np.sum(np.abs(terms * pairs.weights[owner[near]]), axis=1)
+    return scales
+
+
+def _rounding_terms(counts: np.ndarray, values: np.ndarray, scales: np.ndarray) -> np.ndarray:
+    """N (2|c| ρ + ρ²), ρ = ROUNDING_ULPS · u · S."""
+    rho = ROUNDING_ULPS * np.finfo(np.float64).eps / 2.0 * scales
+    return counts * rho * (2.0 * np.abs(values) + rho)
+
+
+def rounding_allowances(lag_model: LagModel, pairs: Sequence[tuple[int, int, int, int]]) -> list[float]:
+    """The rounding allowance of each pair's :func:`counted_square_sums` value (module text: Rounding)."""
+    if not pairs:
+        return []
+    batch = pair_batch(
+        tuple(tuple(pair) for pair in pairs), lag_model.reach, bool(lag_model.flicker_variance)
+    )
+    rows = batch.pairs
+    values = term_values(batch, lag_model, bounds=False)
+    at_lags = rounding_scales(rows, lag_model, batch.lag_owner, batch.lags, values.lags)
+    at_nodes = rounding_scales(rows, lag_model, batch.node_owner, batch.nodes, values.nodes)
+    size = len(rows.m_i)
+    total = np.bincount(
+        batch.lag_owner, _rounding_terms(batch.lag_counts, values.lags, at_lags), minlength=size
+    )
+    total += np.bincount(
+        batch.node_owner, _rounding_terms(batch.node_counts, values.nodes, at_nodes), minlength=size
+    )
+    return total.tolist()

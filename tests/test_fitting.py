@@ -292,6 +292,8 @@ BAD_OPTIONS = [
     ("ar-order", {"ar_order": 0}, ValueError, "ar_order=0"),
     ("minimum-clusters", {"minimum_clusters": 1}, ValueError, "minimum_clusters=1"),
     ("iterations", {"iterations": 0}, ValueError, "iterations=0"),
+    ("tolerance-zero", {"tolerance": 0.0}, ValueError, "tolerance=0"),
+    ("tolerance-nan", {"tolerance": float("nan")}, ValueError, "tolerance=nan"),
     ("tau-range-order", {"tau_range": (2.0, 1.0)}, ValueError, "low must not exceed high"),
 ]
 
@@ -334,3 +336,21 @@ def test_fit_recording_fits_each_axis_as_fit_noise_model_does():
         fit_recording(recording, tau_min=0.0)
     with pytest.raises(ValueError, match=r"axes=\['wz'\]"):
         fit_recording(recording, axes=["wz"])
+
+
+def test_iterations_stop_once_a_step_moves_no_parameter_by_the_tolerance():
+    # White + RRW + 1/f: the default stops when the last step moved each parameter by at most 0.05 of its
+    # standard error; without a tolerance every one of the iterations is taken.
+    truth = NoiseModel(sample_rate=100.0, white_variance=3.6e-5, rrw_variance=1e-12, flicker_variance=1e-9)
+    y = sample_noise(truth, 200_000, rng=np.random.default_rng(41))
+    components = ("white", "rrw", "flicker")
+    settled = fit_noise_model(y, 100.0, components, iterations=6)
+    every = fit_noise_model(y, 100.0, components, iterations=6, tolerance=None)
+    assert "6 iterations," in every.method
+    taken = int(settled.method.split(" iterations (the last moved no parameter")[0].split(", ")[-1])
+    assert taken < 6
+    # One more step from there moves nothing by more than the tolerance either (the steps shrink).
+    one_more = fit_noise_model(y, 100.0, components, iterations=taken + 1, tolerance=None)
+    for name in settled.parameters:
+        change = abs(settled.value(name) - one_more.value(name))
+        assert change <= 0.05 * settled.standard_errors[name]

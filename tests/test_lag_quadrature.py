@@ -1,9 +1,12 @@
 """The lag quadrature of the τ-covariance: each part held to its proved bound.
 
 - the Gauss-block sum against the same c summed over every lag (isolates the quadrature; the proved
-  bound plus 1e-11 relative for floating-point rounding, which the bound does not cover: the nine-term
-  sum of H loses about (m_j/m_i)² ulps where the support is wider than 256 lags);
+  bound plus both sums' rounding allowances, which the bound does not cover: a nine-term value of c
+  carries a few ulps of Σ|w_q H|, 10⁶–10⁸ times |c| from half a width to FAR widths out; the allowance is
+  held below 1e-8 of the sum so that it cannot hide a quadrature error);
 - c itself, including the Newton series of the far tail, against 30-digit mpmath sums Σ_u W(u) γ_z(δ + u);
+- the rounding model of the allowance: a nine-term c outside the support within ROUNDING_ULPS ulps of
+  Σ_q |w_q H| (plus len(W) ulps of |c|) of the direct sum, for m_j/m_i = 16 and 32;
 - the lemma behind the derivative bound: F^{(p)} of F(z) = Γ(z + s)/Γ(z) keeps one sign, |F^{(p)}| falls,
   and |F^{(p)}(j)| ≤ |Δ^p F(j − p)| (mpmath derivatives at 30 digits);
 - the discrete Gauss rule integrates polynomials of degree ≤ 2p − 1 over the block's integers exactly;
@@ -30,28 +33,38 @@ from hypothesis import strategies as st
 from carousel_theory.increment_sums import flicker_increment_difference
 from carousel_theory.lag_quadrature import (
     GAUSS_POINTS,
+    ROUNDING_ULPS,
     LagModel,
     PairBatch,
     _direct_flicker,
     _gauss_rule,
     _make_pair,
     _nine_term_sum,
+    _Pairs,
+    _rounding_terms,
     _values,
     combined_sums,
     counted_square_sum,
     counted_square_sums,
+    rounding_allowances,
+    rounding_scales,
     term_values,
 )
 from carousel_theory.noise_model import NoiseModel
 
 
-def _every_lag(model: NoiseModel, m_i: int, m_j: int, length: int) -> float:
+def _every_lag(model: NoiseModel, m_i: int, m_j: int, length: int) -> tuple[float, float]:
+    """(Σ N c² over every lag, its rounding allowance)."""
     K_i, K_j = length - 2 * m_i + 1, length - 2 * m_j + 1
     pair = _make_pair(m_i, m_j, K_i, K_j)
     lags = np.arange(-(K_i - 1), K_j, dtype=np.float64)
-    values, errors = _values(pair, LagModel.of(model), lags)
+    lag_model = LagModel.of(model)
+    values, errors = _values(pair, lag_model, lags)
     assert np.all(errors <= 1e-14 * np.max(np.abs(values)))
-    return float(np.dot(pair.count(lags), values * values))
+    owner = np.zeros(len(lags), dtype=np.int64)
+    scales = rounding_scales(_Pairs.of([pair]), lag_model, owner, lags, values)
+    allowance = float(np.sum(_rounding_terms(pair.count(lags), values, scales)))
+    return float(np.dot(pair.count(lags), values * values)), allowance
 
 
 def _flicker_model(d: float, with_ar: bool) -> NoiseModel:
@@ -79,10 +92,14 @@ def test_gauss_blocks_equal_every_lag_summed_within_the_bound(d, m_i, ratio, len
     m_j = m_i * ratio
     assume(3 * m_j <= length)  # at least three clusters, as the fit requires
     K_i, K_j = length - 2 * m_i + 1, length - 2 * m_j + 1
-    total, bound = counted_square_sum(LagModel.of(model), m_i, m_j, K_i, K_j)
-    reference = _every_lag(model, m_i, m_j, length)
-    assert abs(total - reference) <= bound + 1e-11 * reference  # the bound is for exact arithmetic
+    lag_model = LagModel.of(model)
+    total, bound = counted_square_sum(lag_model, m_i, m_j, K_i, K_j)
+    (rounding,) = rounding_allowances(lag_model, [(m_i, m_j, K_i, K_j)])
+    reference, reference_rounding = _every_lag(model, m_i, m_j, length)
+    # The bound is for exact arithmetic; both sums also carry their rounding (module text: Rounding).
+    assert abs(total - reference) <= bound + rounding + reference_rounding
     assert bound <= 1e-11 * reference
+    assert rounding + reference_rounding <= 1e-8 * reference
 
 
 @pytest.mark.parametrize("d", ["0.3", "0.5", "0.9"])
@@ -320,3 +337,27 @@ def test_gridded_node_values_hold_for_blocks_longer_than_four_million_lags(lengt
     blocks = batch.block_ends[:, 1] - batch.block_ends[:, 0] + 1
     assert blocks.max() > 2**22
     _assert_node_values_are_nine_term_sums(batch, lag_model, near)
+
+
+@given(
+    d=st.floats(min_value=0.02, max_value=0.98),
+    m_i=st.sampled_from([1, 3, 8, 50]),
+    ratio=st.sampled_from([16, 32]),
+    widths=st.floats(min_value=0.05, max_value=4.0),
+)
+def test_nine_term_value_rounding_is_within_its_allowance(d, m_i, ratio, widths):
+    # The rounding model behind rounding_allowances: a nine-term c outside the support against the direct
+    # sum Σ_u W(u) γ_z(δ + u) (positive weights, γ_z of one sign there: accurate to about len(W) ulps).
+    m_j = m_i * ratio
+    lag_model = LagModel.of(NoiseModel(sample_rate=1.0, flicker_variance=1.0, flicker_d=d))
+    pairs = _Pairs.of([_make_pair(m_i, m_j, 10**6, 10**6)])
+    width = float(pairs.width()[0])
+    offset = 2 * m_i - 2 + np.ceil(widths * width + np.arange(5.0))  # x₀ = δ − (2m_i − 2) ≥ 1 above
+    lags = np.concatenate((offset, -offset - (2 * m_j - 2) + (2 * m_i - 2)))
+    owner = np.zeros(len(lags), dtype=np.int64)
+    nine_term = _nine_term_sum(pairs, lag_model, owner, lags)
+    direct = _direct_flicker(m_i, m_j, lag_model, lags)
+    terms = lag_model.fourth_sum(pairs.positions[owner] - lags[:, None]) * pairs.weights[owner]
+    scale = np.sum(np.abs(terms), axis=1) + (2 * m_i + 2 * m_j - 3) * np.abs(direct)
+    unit = np.finfo(np.float64).eps / 2
+    assert np.all(np.abs(nine_term - direct) <= ROUNDING_ULPS * unit * scale)

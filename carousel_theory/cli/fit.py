@@ -86,7 +86,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         f"leaves {DEFAULT_TAU_MIN_OCTAVES} octave τ above it)",
     )
     parser.add_argument("--tau-max", type=float, help="largest τ (s) in the fit")
-    parser.add_argument("--iterations", type=int, default=3, help="covariance re-evaluations (default 3)")
+    parser.add_argument(
+        "--iterations",
+        type=int,
+        default=3,
+        help="most covariance re-evaluations (default 3; fewer once a step moves no parameter by more "
+        "than 0.05 of its standard error)",
+    )
     parser.add_argument(
         "--markdown", type=Path, metavar="FILE.md", help="write a Table III-style markdown report"
     )

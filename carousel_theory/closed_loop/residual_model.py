@@ -180,8 +180,13 @@ def fit_residual_model(
     x = np.asarray(values, dtype=np.float64)
     ar = _ar_coefficients(x, sample_rate, terms, reference)
     components = ("ar" if ar else "white", "rrw", *(("flicker",) if terms.flicker else ()))
+    # Three covariance evaluations, always: the loop's false-alarm rates were measured with them.
     options = FitOptions(
-        components, flicker_d=FLICKER_D, ar_coefficients=ar or None, minimum_clusters=MINIMUM_CLUSTERS
+        components,
+        flicker_d=FLICKER_D,
+        ar_coefficients=ar or None,
+        minimum_clusters=MINIMUM_CLUSTERS,
+        tolerance=None,
     )
     observed = observe_allan(x, sample_rate, estimator="non-overlapping")
     fixed = reference.result.tau_covariance if reference is not None else None
