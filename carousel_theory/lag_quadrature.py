@@ -77,8 +77,9 @@ far tail (u the unit roundoff). Measured: one nine-term value differs from the d
 25 ulps of Σ_q |w_q H| (d = 0.875, m_i = 50, m_j/m_i = 16: H itself carries several ulps), hence
 ROUNDING_ULPS = 64; the quadrature's difference from the every-lag sum beyond the proved bound reaches
 1.7 times the allowance taken at one ulp (about 2,500 random pairs, d from 0.02 to 0.98, m_j/m_i up to
-16); the every-lag sum itself is within 1e-13 of one taking c outside the support from the direct sum. A fixed 1e-11 relative allowance is not enough: at d ≈ 0.77, m_j/m_i = 16 the sum moves by
-1.04e-11 relative when the plan changes which lags are exact, and at d ≈ 0.92, m_i = 50, m_j/m_i = 16 by
+16); the every-lag sum itself is within 1e-13 of one taking c outside the support from the direct sum.
+A fixed 1e-11 relative allowance is not enough: at d ≈ 0.77, m_j/m_i = 16 the sum moves by 1.04e-11
+relative when the plan changes which lags are exact, and at d ≈ 0.92, m_i = 50, m_j/m_i = 16 by
 1.04e-11 with the plan unchanged.
 
 The exact zone grows with the AR reach; :meth:`LagModel.of` rounds the reach up to a multiple of
