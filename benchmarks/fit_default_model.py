@@ -39,6 +39,7 @@ CANDIDATES: dict[str, tuple[tuple[str, ...], float | None, float | None]] = {
     "ar,rrw,flicker": (("ar", "rrw", "flicker"), None, None),
     "ar,rrw": (("ar", "rrw"), None, None),
     "ar,rrw,flicker τ≥0.1": (("ar", "rrw", "flicker"), 0.1, None),
+    "white,rrw,flicker,ar": (("white", "rrw", "flicker", "ar"), None, None),
     "white,rrw,flicker d=0.5": (("white", "rrw", "flicker"), None, 0.5),
     "white,rrw,flicker d=0.5 τ≥1": (("white", "rrw", "flicker"), 1.0, 0.5),
     "white,rrw,flicker d=0.5, every τ or τ≥1 if rejected": (("white", "rrw", "flicker"), -1.0, 0.5),
