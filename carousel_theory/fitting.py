@@ -480,11 +480,8 @@ def _ar_coefficients(observed: ObservedAllan, options: FitOptions) -> tuple[floa
     estimator = short_noise_coefficients if beside_white else yule_walker
     coefficients = estimator(observed.ar_source, observed.sample_rate, options.ar_order)
     if not coefficients:
-        rule = (
-            "no autocovariance at lags ≥ 1 exceeds 4 γ(0)/√n"
-            if beside_white
-            else f"no partial autocorrelation up to order {options.ar_order} exceeds 4/√n"
-        )
+        rule = f"no partial autocorrelation up to order {options.ar_order} exceeds 4/√n"
+        rule += " and no autocovariance at lags ≥ 1 exceeds 4 γ(0)/√n" if beside_white else ""
         raise ValueError(
             f"y: no short correlated noise in the record ({rule}); fit without 'ar' "
             "(its short noise is white) or give ar_coefficients"
