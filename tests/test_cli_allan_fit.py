@@ -205,3 +205,20 @@ def test_issue13_fit_term_at_bound_is_reported_everywhere(filtered_npz, capsys, 
     assert "term_at_bound" in kinds and "model_rejected" in kinds
     assert column["at_bound"][0] == "white_variance"
     assert column["paper_units"]["white_variance_at_1s"]["standard_error"] is None
+
+
+def test_fit_all_iterations_takes_every_one(recording_csv, capsys):
+    # The method text says how many covariance evaluations each fit took; --all-iterations takes them all.
+    argv = ["fit", str(recording_csv), "--model", "white,rrw,flicker", "--iterations", "5", "--json"]
+    assert main([*argv, "--all-iterations"]) == 0
+    every = json.loads(capsys.readouterr().out)
+    assert main(argv) == 0
+    settled = json.loads(capsys.readouterr().out)
+    for axis in ("wx", "wy"):
+        assert "5 iterations," in _method(every, axis)
+        assert "(the last moved no parameter by more than 0.05" in _method(settled, axis)
+
+
+def _method(document: dict, axis: str) -> str:
+    (file,) = document["files"]
+    return file["columns"][axis]["method"]

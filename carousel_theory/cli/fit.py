@@ -17,7 +17,7 @@ from carousel_theory.cli._output_units import OutputUnits, add_output_units_opti
 from carousel_theory.cli.allan import add_recording_arguments, read_recording
 from carousel_theory.fit_defaults import DEFAULT_TAU_MIN, DEFAULT_TAU_MIN_OCTAVES, LADDER, select_default_fit
 from carousel_theory.fit_diagnostics import FitNotice, fit_notices
-from carousel_theory.fitting import COMPONENTS, FitResult, consistency_test, fit_recording
+from carousel_theory.fitting import COMPONENTS, DEFAULT_TOLERANCE, FitResult, consistency_test, fit_recording
 from carousel_theory.json_output import json_document, strict_json
 from carousel_theory.output_files import plan_outputs, write_text_atomic
 from carousel_theory.plots import plot_fit, short_title
@@ -94,6 +94,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "than 0.05 of its standard error)",
     )
     parser.add_argument(
+        "--all-iterations",
+        action="store_true",
+        help="take every one of --iterations, even after a step that moved no parameter",
+    )
+    parser.add_argument(
         "--markdown", type=Path, metavar="FILE.md", help="write a Table III-style markdown report"
     )
     add_output_units_option(parser)
@@ -110,6 +115,7 @@ def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitR
         "label": f"fit {path.name}: axes",
         "estimator": args.estimator,
         "iterations": args.iterations,
+        "tolerance": None if args.all_iterations else DEFAULT_TOLERANCE,
     }
     if args.model is None:
         fits, notes = select_default_fit(recording, **common)
@@ -162,7 +168,9 @@ def _report_header(files: list[tuple[Any, dict[str, FitResult]]], args: argparse
         + (f" --tau-min {args.tau_min:g}" if args.tau_min is not None else "")
         + (f" --tau-max {args.tau_max:g}" if args.tau_max is not None else "")
         + (f" --flicker-d {args.flicker_d:g}" if args.flicker_d is not None else "")
-        + f" --estimator {args.estimator} --iterations {args.iterations} --markdown {args.markdown}`",
+        + f" --estimator {args.estimator} --iterations {args.iterations}"
+        + (" --all-iterations" if args.all_iterations else "")
+        + f" --markdown {args.markdown}`",
         "",
         f"Method: {first.method}. Values are estimate ± one standard error.",
         "",
