@@ -16,8 +16,8 @@ lambdified closed forms, and the pairs' structure), the later ones are what a se
 pays per axis (the structure is kept for the next record of the same length whose AR reach rounds to
 the same multiple of 32 lags, :mod:`carousel_theory.lag_quadrature`); the first ratio and the median of
 the later ones are printed. A fit stops re-evaluating its covariance across τ once a step moved no
-parameter by more than 0.05 of its standard error, so later records differ in the evaluations they take
-(shown in the fit's method text, not here). With ``--breakdown`` each fit is run once more and its CPU time is
+parameter by more than 0.05 of its standard error, so records differ in the evaluations they take (each
+row shows them). With ``--breakdown`` each fit is run once more and its CPU time is
 split into the τ-covariances (the pairs' structure, the values at exact lags and Gauss nodes, the sums
 and the rest) and everything else.
 
@@ -175,7 +175,7 @@ def _timed_records(args: argparse.Namespace, size: int, rng: np.random.Generator
             print(
                 f"{size:>10} {record + 1:>7} {text:>22} {fit:>9.2f} {peer:>15.2f} {fit / peer:>15.2f} "
                 f"{fit_cpu / peer_cpu:>19.2f}   χ² {result.chi_square:.3g} on {result.degrees_of_freedom}, "
-                f"p = {result.p_value:.2g}"
+                f"p = {result.p_value:.2g}, {result.iterations} iterations"
             )
             if args.breakdown:
                 _breakdown(y, components)

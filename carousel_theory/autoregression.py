@@ -52,7 +52,7 @@ from scipy.ndimage import uniform_filter1d
 from scipy.optimize import nnls
 
 from carousel_theory._validation import check_finite_array, check_positive_integer
-from carousel_theory.noise_model import ar_autocovariance
+from carousel_theory.noise_model import ar_autocovariance, ar_long_run_variance, stationary_ar
 
 __all__ = [
     "high_pass_window",
@@ -161,17 +161,12 @@ def short_noise_coefficients(x: Any, sample_rate: float, maximum_order: int) -> 
 
 def _closer(autocovariance: np.ndarray, n: int, maximum_order: int) -> tuple[float, ...]:
     """Of the plain and the high-order coefficients, those whose white + AR model is closer."""
-    whole = _plain(autocovariance, n, maximum_order)
-    beside = _beside_white(autocovariance, n, maximum_order)
-    if not whole or not beside or not _stationary(beside):
-        return whole or (beside if _stationary(beside) else ())
-    misfit = [_white_and_ar_fit(autocovariance, coefficients)[0] for coefficients in (whole, beside)]
-    return beside if misfit[1] < misfit[0] else whole
-
-
-def _stationary(coefficients: tuple[float, ...]) -> bool:
-    """All roots of z^p − φ₁ z^{p−1} − … − φ_p inside the unit circle (() counts as stationary)."""
-    return not coefficients or bool(np.all(np.abs(np.roots((1.0, *(-c for c in coefficients)))) < 1.0))
+    found = (_plain(autocovariance, n, maximum_order), _beside_white(autocovariance, n, maximum_order))
+    candidates = [coefficients for coefficients in found if coefficients and stationary_ar(coefficients)]
+    if len(candidates) < 2:
+        return candidates[0] if candidates else ()
+    misfit = [_white_and_ar_fit(autocovariance, coefficients)[0] for coefficients in candidates]
+    return candidates[1] if misfit[1] < misfit[0] else candidates[0]
 
 
 def _white_and_ar_fit(autocovariance: np.ndarray, coefficients: tuple[float, ...]) -> tuple[float, float]:
@@ -183,4 +178,4 @@ def _white_and_ar_fit(autocovariance: np.ndarray, coefficients: tuple[float, ...
     scale = np.linalg.norm(design, axis=0)
     solution, residual = nnls(design / scale, autocovariance)
     innovation, white = solution / scale
-    return float(residual), float(white + innovation / (1.0 - sum(coefficients)) ** 2)
+    return float(residual), float(white + ar_long_run_variance(innovation, coefficients))

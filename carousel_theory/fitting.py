@@ -133,6 +133,8 @@ class FitResult:
         Number of samples of the record.
     tau_covariance : ndarray
         The covariance C of the used Allan variance estimates across τ under which the fit was made.
+    iterations : int
+        Re-evaluations of C the fit took (0 under a given C).
     """
 
     model: NoiseModel
@@ -148,6 +150,7 @@ class FitResult:
     at_bound: tuple[str, ...]
     length: int
     tau_covariance: np.ndarray | None = None
+    iterations: int = 0
 
     @property
     def components(self) -> tuple[str, ...]:
@@ -692,6 +695,7 @@ def fit_observed(
         at_bound=tuple(name for name, value in zip(names, theta, strict=False) if value <= 0),
         length=observed.length,
         tau_covariance=covariance,
+        iterations=solution.evaluations,
     )
 
 

@@ -140,7 +140,7 @@ class NoiseModel:
             raise TypeError(f"ar_coefficients={coefficients!r}: must be a tuple of floats")
         for j, value in enumerate(coefficients):
             check_real(f"ar_coefficients[{j}]", value)
-        if coefficients and _slowest_root(coefficients) >= 1.0:
+        if not stationary_ar(coefficients):
             raise ValueError(
                 f"ar_coefficients={coefficients!r}: must describe a stationary AR process (every root of "
                 "1 − Σ φ_j z^j outside the unit circle)"
@@ -177,7 +177,7 @@ class NoiseModel:
     @property
     def long_run_ar_variance(self) -> float:
         """σ_AR²/(1 − Σ φ_j)²: the white-noise variance that long averages of the AR term see."""
-        return float(self.ar_variance) / (1.0 - sum(self.ar_coefficients)) ** 2
+        return ar_long_run_variance(self.ar_variance, tuple(self.ar_coefficients))
 
     def increment_autocovariance(self, lags: int) -> np.ndarray:
         """γ_z(k), k = 0 … lags − 1, of the increments of the whole model (see the module text)."""
@@ -270,6 +270,17 @@ _FIELD = {
     "quantization": "quantization",
     "ar": "ar_variance",
 }
+
+
+def stationary_ar(coefficients: tuple[float, ...]) -> bool:
+    """Every root of 1 − Σ φ_j z^j outside the unit circle (() is white noise: stationary)."""
+    return not coefficients or _slowest_root(tuple(coefficients)) < 1.0
+
+
+def ar_long_run_variance(variance: float, coefficients: tuple[float, ...]) -> float:
+    """σ²/(1 − Σ φ_j)²: the long-run variance of the AR process of innovation variance σ² (the white-noise
+    variance that long averages of it see)."""
+    return float(variance) / (1.0 - sum(coefficients)) ** 2
 
 
 def _slowest_root(coefficients: tuple[float, ...]) -> float:

@@ -25,7 +25,12 @@ from carousel_theory import units
 from carousel_theory.autoregression import yule_walker
 from carousel_theory.closed_loop.flicker_blocks import flicker_block_sums
 from carousel_theory.fitting import FitOptions, FitResult, fit_observed, observe_allan
-from carousel_theory.noise_model import NoiseModel, ar_autocovariance, term_allan_variance
+from carousel_theory.noise_model import (
+    NoiseModel,
+    ar_autocovariance,
+    ar_long_run_variance,
+    term_allan_variance,
+)
 from carousel_theory.processes import fractionally_integrate, sample_flicker
 from carousel_theory.propagation import repeated_weights_bin_variances, weighted_sum_variance
 
@@ -158,7 +163,7 @@ def _fitted_noise(result: FitResult) -> FittedNoise:
     loop uses, the AR innovation variance scaled by 1/(1 − Σ a_j)² to the long-run variance (the AR
     coefficients themselves are held fixed, as the fit holds them)."""
     model = result.model
-    gain = 1.0 / (1.0 - sum(model.ar_coefficients)) ** 2 if model.ar_coefficients else 1.0
+    gain = ar_long_run_variance(1.0, tuple(model.ar_coefficients))
     rows = [i for i, name in enumerate(result.parameters) if name in _FITTER_PARAMETER]
     names = tuple(_FITTER_PARAMETER[result.parameters[i]] for i in rows)
     scale = np.array([gain if result.parameters[i] == "ar_variance" else 1.0 for i in rows])
