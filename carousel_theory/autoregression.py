@@ -44,6 +44,7 @@ the spread 0.013.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -52,14 +53,18 @@ from scipy.ndimage import uniform_filter1d
 from scipy.optimize import nnls
 
 from carousel_theory._validation import check_finite_array, check_positive_integer
-from carousel_theory.noise_model import ar_autocovariance, ar_long_run_variance, stationary_ar
+from carousel_theory.noise_model import ar_autocovariance, ar_decay_lags, ar_long_run_variance, stationary_ar
 
 __all__ = [
+    "ShortNoiseEstimate",
+    "coefficient_covariance",
     "high_pass_window",
     "high_passed_autocovariance",
     "short_noise_coefficients",
+    "short_noise_estimate",
     "yule_walker",
     "yule_walker_beside_white",
+    "yule_walker_estimate",
 ]
 
 #: Equations of the high-order Yule–Walker system per unit of the maximum order.
@@ -90,10 +95,33 @@ def high_passed_autocovariance(x: Any, sample_rate: float, lags: int) -> tuple[n
     return np.concatenate((autocovariance, np.zeros(lags + 1 - len(autocovariance)))), n
 
 
+#: The two estimators, as :attr:`ShortNoiseEstimate.estimator` names them.
+PLAIN, HIGH_ORDER = "Yule–Walker", "high-order Yule–Walker"
+
+
+@dataclass(frozen=True)
+class ShortNoiseEstimate:
+    """AR coefficients of a record's short noise, the estimator that gave them (:data:`PLAIN`,
+    :data:`HIGH_ORDER`, or "" when none was found) and their large-sample covariance
+    (:func:`coefficient_covariance`; 0 × 0 without coefficients)."""
+
+    coefficients: tuple[float, ...]
+    estimator: str
+    covariance: np.ndarray
+
+
 def yule_walker(x: Any, sample_rate: float, maximum_order: int) -> tuple[float, ...]:
     """AR coefficients by Yule–Walker on ``x`` with its slow part removed (module text); () for order 0."""
     check_positive_integer("maximum_order", maximum_order)
     return _plain(*high_passed_autocovariance(x, sample_rate, maximum_order), maximum_order)
+
+
+def yule_walker_estimate(x: Any, sample_rate: float, maximum_order: int) -> ShortNoiseEstimate:
+    """:func:`yule_walker` with the coefficients' covariance (:func:`coefficient_covariance`)."""
+    check_positive_integer("maximum_order", maximum_order)
+    autocovariance, n = high_passed_autocovariance(x, sample_rate, maximum_order)
+    coefficients = _plain(autocovariance, n, maximum_order)
+    return _estimate(autocovariance, n, coefficients, PLAIN if coefficients else "", maximum_order)
 
 
 def _plain(autocovariance: np.ndarray, n: int, maximum_order: int) -> tuple[float, ...]:
@@ -147,35 +175,112 @@ def short_noise_coefficients(x: Any, sample_rate: float, maximum_order: int) -> 
     :func:`yule_walker_beside_white`, those whose white + AR autocovariance v g_φ(k) + σ² [k = 0] (v, σ² ≥ 0
     by non-negative least squares) is closer to the record's at lags 0 … J, with the high-pass's offset
     added back; () when neither finds any."""
+    return short_noise_estimate(x, sample_rate, maximum_order).coefficients
+
+
+def short_noise_estimate(x: Any, sample_rate: float, maximum_order: int) -> ShortNoiseEstimate:
+    """:func:`short_noise_coefficients` with the estimator chosen and the coefficients' covariance."""
     check_positive_integer("maximum_order", maximum_order)
     autocovariance, n = high_passed_autocovariance(x, sample_rate, _beside_white_lags(maximum_order))
-    coefficients = _closer(autocovariance, n, maximum_order)
+    corrected = autocovariance
+    coefficients, estimator = _closer(autocovariance, n, maximum_order)
     for _ in range(OFFSET_ROUNDS):
         if not coefficients:
             break
         _, long_run = _white_and_ar_fit(autocovariance, coefficients)
-        offset = long_run / high_pass_window(sample_rate)
-        coefficients = _closer(autocovariance + offset, n, maximum_order)
-    return coefficients
+        corrected = autocovariance + long_run / high_pass_window(sample_rate)
+        coefficients, estimator = _closer(corrected, n, maximum_order)
+    return _estimate(corrected, n, coefficients, estimator, maximum_order)
 
 
-def _closer(autocovariance: np.ndarray, n: int, maximum_order: int) -> tuple[float, ...]:
-    """Of the plain and the high-order coefficients, those whose white + AR model is closer."""
-    found = (_plain(autocovariance, n, maximum_order), _beside_white(autocovariance, n, maximum_order))
-    candidates = [coefficients for coefficients in found if coefficients and stationary_ar(coefficients)]
+def _closer(autocovariance: np.ndarray, n: int, maximum_order: int) -> tuple[tuple[float, ...], str]:
+    """Of the plain and the high-order coefficients, those whose white + AR model is closer, and which."""
+    found = (
+        (_plain(autocovariance, n, maximum_order), PLAIN),
+        (_beside_white(autocovariance, n, maximum_order), HIGH_ORDER),
+    )
+    candidates = [(c, name) for c, name in found if c and stationary_ar(c)]
     if len(candidates) < 2:
-        return candidates[0] if candidates else ()
-    misfit = [_white_and_ar_fit(autocovariance, coefficients)[0] for coefficients in candidates]
+        return candidates[0] if candidates else ((), "")
+    misfit = [_white_and_ar_fit(autocovariance, coefficients)[0] for coefficients, _ in candidates]
     return candidates[1] if misfit[1] < misfit[0] else candidates[0]
 
 
 def _white_and_ar_fit(autocovariance: np.ndarray, coefficients: tuple[float, ...]) -> tuple[float, float]:
-    """(residual norm, long-run variance σ² + v/(1 − Σφ)²) of γ̂(k) ≈ v g_φ(k) + σ² [k = 0], v, σ² ≥ 0 by
-    non-negative least squares, g_φ the AR autocovariance at unit innovation variance."""
+    """(residual norm, long-run variance σ² + v/(1 − Σφ)²) of :func:`_white_and_ar_parts`."""
+    residual, innovation, white = _white_and_ar_parts(autocovariance, coefficients)
+    return residual, float(white + ar_long_run_variance(innovation, coefficients))
+
+
+def _white_and_ar_parts(
+    autocovariance: np.ndarray, coefficients: tuple[float, ...]
+) -> tuple[float, float, float]:
+    """(residual norm, v, σ²) of γ̂(k) ≈ v g_φ(k) + σ² [k = 0], v, σ² ≥ 0 by non-negative least squares,
+    g_φ the AR autocovariance at unit innovation variance."""
     design = np.zeros((len(autocovariance), 2))
     design[:, 0] = ar_autocovariance(coefficients, len(autocovariance))
     design[0, 1] = 1.0
     scale = np.linalg.norm(design, axis=0)
     solution, residual = nnls(design / scale, autocovariance)
     innovation, white = solution / scale
-    return float(residual), float(white + ar_long_run_variance(innovation, coefficients))
+    return float(residual), float(innovation), float(white)
+
+
+# --- the coefficients' covariance -------------------------------------------------------------------
+
+
+def _estimate(
+    autocovariance: np.ndarray, n: int, coefficients: tuple[float, ...], estimator: str, maximum_order: int
+) -> ShortNoiseEstimate:
+    if not coefficients:
+        return ShortNoiseEstimate((), "", np.zeros((0, 0)))
+    covariance = coefficient_covariance(autocovariance, n, coefficients, estimator, maximum_order)
+    return ShortNoiseEstimate(coefficients, estimator, covariance)
+
+
+def coefficient_covariance(
+    autocovariance: np.ndarray, n: int, coefficients: tuple[float, ...], estimator: str, maximum_order: int
+) -> np.ndarray:
+    """Large-sample covariance of AR ``coefficients`` found by ``estimator`` (:data:`PLAIN` or
+    :data:`HIGH_ORDER`, at ``maximum_order``) from the sample autocovariance γ̂(0 … J) of n samples.
+
+    Both estimators solve equations M(γ̂) φ = b(γ̂) (least squares when there are more equations than
+    coefficients), so to first order dφ = M⁺ (db − dM φ) = G dγ̂; Cov φ̂ = G Cov(γ̂) Gᵀ with Bartlett's
+    formula Cov(γ̂(h), γ̂(k)) = (1/n) Σ_j [γ(j) γ(j + k − h) + γ(j + k) γ(j − h)] (Gaussian noise), γ the
+    white + AR autocovariance v g_φ(k) + σ² [k = 0] fitted to γ̂ (:func:`short_noise_coefficients`)."""
+    lags = len(autocovariance) - 1
+    _, innovation, white = _white_and_ar_parts(autocovariance, coefficients)
+    reach = len(coefficients) + 2 + ar_decay_lags(coefficients) + 2 * lags + 1
+    model = innovation * np.array(ar_autocovariance(coefficients, reach))
+    model[0] += white
+    gradient = _linearization(autocovariance, coefficients, estimator, maximum_order)
+    return gradient @ _autocovariance_covariance(model, lags, n) @ gradient.T
+
+
+def _linearization(
+    autocovariance: np.ndarray, coefficients: tuple[float, ...], estimator: str, maximum_order: int
+) -> np.ndarray:
+    """G (p × (J + 1)) with dφ = G dγ̂: M⁺ (db − dM φ), M and b read from γ̂ at the estimator's lags."""
+    p, phi = len(coefficients), np.asarray(coefficients, dtype=np.float64)
+    if estimator == PLAIN:
+        rows = np.arange(p)
+        matrix_lags, right_lags = np.abs(rows[:, None] - rows[None, :]), rows + 1
+    elif estimator == HIGH_ORDER:
+        rows = np.arange(p + 1, p + EQUATIONS_PER_ORDER * maximum_order + 1)
+        matrix_lags, right_lags = rows[:, None] - np.arange(1, p + 1), rows
+    else:
+        raise ValueError(f"estimator={estimator!r}: must be {PLAIN!r} or {HIGH_ORDER!r}")
+    lag_axis = np.arange(len(autocovariance))
+    derivative = (right_lags[:, None] == lag_axis).astype(np.float64)
+    derivative -= np.einsum("rcl,c->rl", (matrix_lags[:, :, None] == lag_axis).astype(np.float64), phi)
+    return np.linalg.pinv(autocovariance[matrix_lags]) @ derivative
+
+
+def _autocovariance_covariance(model: np.ndarray, lags: int, n: int) -> np.ndarray:
+    """Bartlett's Cov(γ̂(h), γ̂(k)), h, k = 0 … ``lags``, for the autocovariance ``model`` (γ(0), γ(1), …;
+    zero beyond) and n samples: (A(|k − h|) + A(h + k))/n with A(s) = Σ_j γ(j) γ(j + s)."""
+    symmetric = np.concatenate((model[:0:-1], model))
+    size = len(symmetric)
+    products = np.array([np.dot(symmetric[: size - s], symmetric[s:]) for s in range(2 * lags + 1)])
+    h = np.arange(lags + 1)
+    return (products[np.abs(h[:, None] - h[None, :])] + products[h[:, None] + h[None, :]]) / n

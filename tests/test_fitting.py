@@ -4,6 +4,7 @@ that the estimates are unbiased and their standard errors and intervals are cali
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -354,3 +355,17 @@ def test_iterations_stop_once_a_step_moves_no_parameter_by_the_tolerance():
     for name in settled.parameters:
         change = abs(settled.value(name) - one_more.value(name))
         assert change <= 0.05 * settled.standard_errors[name]
+
+
+def test_interval_of_a_barely_determined_variance_holds_its_estimate():
+    # s = 20 θ̂ gives ν = 2θ̂²/s² = 0.005, where the χ² quantiles would put the whole interval above θ̂
+    # (its lower end at 111 θ̂); below ν = 1 the interval is 0 … θ̂ + z·s instead.
+    result = fit_noise_model(_Y, 1.0)
+    value = result.model.white_variance
+    barely = replace(result, standard_errors={**result.standard_errors, "white_variance": 20.0 * value})
+    low, high = barely.interval("white_variance")
+    assert (low, high) == (0.0, pytest.approx(value + 1.959963984540054 * 20.0 * value, rel=1e-12))
+    # At ν ≥ 1 the χ² interval is kept and holds the estimate.
+    held = replace(result, standard_errors={**result.standard_errors, "white_variance": 1.4 * value})
+    low, high = held.interval("white_variance")
+    assert 0.0 < low < value < high
