@@ -39,6 +39,14 @@ the high-order AR(1) is chosen on 9 records, plain Yule–Walker's AR(4) on 3; e
 at φ = 0.99
 (τ_c = 1 s against W = 10 s, where the first-order correction no longer suffices) the mean is 0.977 and
 the spread 0.013.
+
+:func:`coefficient_covariance` — the coefficients' large-sample covariance. Both estimators solve
+M(γ̂) φ = b(γ̂) (least squares for the high-order one), so to first order dφ = M⁺ (db − dM φ) = G dγ̂ and
+Cov φ̂ = G Cov(γ̂) Gᵀ, with Bartlett's formula for Cov(γ̂) under the white + AR autocovariance fitted to
+γ̂ (Gaussian noise). The offset correction and the choice between the estimators are not in G. Measured
+over 200 records of 10⁵ samples at 100 Hz (white variance 3.6·10⁻⁵, AR innovation variance 4·10⁻⁶, a
+rate random walk and 1/f noise beside them): the spread of (φ̂ − φ)/error is 0.99, 1.05 and 1.13 for
+φ = 0.95, 0.8 and 0.5, and 1.15 without the white noise (where the two estimators take turns).
 """
 
 from __future__ import annotations

@@ -15,6 +15,14 @@ model-based C the weights do not depend on the noise in each point, which avoids
 weighting with the observed Allan variance. Standard errors: the diagonal of (JᵀC⁻¹J)⁻¹; a fitted d is
 profiled and enters J through ∂(Aθ)/∂d. A parameter at zero is reported in ``at_bound``.
 
+Intervals (``FitResult.interval``): χ²-based from the standard error by default. That error is a plug-in
+one, C evaluated at the estimate, so a weakly determined variance (a rate random walk or 1/f term known
+to tens of percent) reports a small error exactly when it is underestimated: white + RRW at 10⁶
+samples, θ̂ ± 1.96 s held the walk on 45 of 58 records (docs/fit_calibration.md).
+:func:`inverted_interval` (``method="inverted"``) inverts the test with the error at each candidate
+value θ₀, {θ₀ ≥ 0 : |θ̂ − θ₀| ≤ z s(θ₀)}, so that the record is judged by the spread the candidate
+itself would give; it costs one covariance across τ per step of its root search.
+
 AR short noise: the coefficients are estimated before the GLS from the record with its slow part
 removed (:mod:`carousel_theory.autoregression`), and only the innovation variance is fitted by GLS; give
 ``ar_coefficients`` to fix them. With "ar" alone the AR process is the whole short noise (as in the
@@ -49,12 +57,13 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 from scipy import stats
-from scipy.optimize import minimize_scalar, nnls
+from scipy.optimize import brentq, minimize_scalar, nnls
 
 from carousel_theory import units
 from carousel_theory._validation import (
@@ -90,6 +99,7 @@ __all__ = [
     "fit_noise_model",
     "fit_observed",
     "fit_recording",
+    "inverted_interval",
     "nested_test",
     "observe_allan",
     "yule_walker",
@@ -100,6 +110,9 @@ COMPONENTS = ("white", "rrw", "flicker", "quantization", "ar")
 DEFAULT_TOLERANCE = 0.05
 #: Below these degrees of freedom 2θ̂²/s² a variance's interval is 0 … θ̂ + z·s (FitResult.interval).
 MINIMUM_INTERVAL_DEGREES = 1.0
+#: Relative load on C's diagonal where a candidate of :func:`inverted_interval` makes it indefinite to
+#: rounding (measured: eigenvalues down to −2·10⁻¹⁰ of the largest variance, RRW 10⁶ times its estimate).
+CANDIDATE_JITTER = 1e-9
 #: Relative step of the central differences that carry the AR coefficients' error into the parameters.
 AR_STEP = 1e-5
 #: Parameter name of each component in :class:`NoiseModel`.
@@ -154,6 +167,9 @@ class FitResult:
         Standard errors of the AR coefficients estimated from the record (large-sample, Bartlett's
         formula; empty when they were given or there is no AR term). Their error is also carried into
         ``covariance`` and ``standard_errors``.
+    ar_error_covariance : ndarray or None
+        The part of ``covariance`` that is the AR coefficients' error carried into the parameters (zero
+        when they were given or there is no AR term).
     """
 
     model: NoiseModel
@@ -171,6 +187,7 @@ class FitResult:
     tau_covariance: np.ndarray | None = None
     iterations: int = 0
     ar_coefficient_errors: tuple[float, ...] = ()
+    ar_error_covariance: np.ndarray | None = None
 
     @property
     def components(self) -> tuple[str, ...]:
@@ -189,8 +206,12 @@ class FitResult:
         """Equivalent degrees of freedom of each τ's estimate under the fitted model."""
         return np.asarray(self.allan.edf)
 
-    def interval(self, name: str, level: float = 0.95) -> tuple[float, float]:
+    def interval(self, name: str, level: float = 0.95, method: str = "chi-square") -> tuple[float, float]:
         """Confidence interval of a fitted parameter at ``level``.
+
+        ``method="inverted"`` (variances only): :func:`inverted_interval`, whose error is evaluated at each
+        candidate value rather than at the estimate (for a weakly determined term; see the module text).
+        The default, ``"chi-square"``:
 
         For a variance parameter θ̂ with standard error s the interval is χ²-based, like the Allan
         variance's own: with ν = 2θ̂²/s², ν θ̂/χ²_ν((1+level)/2) … ν θ̂/χ²_ν((1−level)/2); a variance is
@@ -204,6 +225,10 @@ class FitResult:
         level = float(check_positive_real("level", level))
         if not level < 1:
             raise ValueError(f"level={level!r}: must be in (0, 1)")
+        if method == "inverted":
+            return inverted_interval(self, name, level)
+        if method != "chi-square":
+            raise ValueError(f"method={method!r}: must be 'chi-square' or 'inverted'")
         value, error = self.value(name), self.standard_errors[name]
         if name in ("bias", "flicker_d") or value <= 0 or not error > 0:
             z = float(stats.norm.ppf((1 + level) / 2))
@@ -729,7 +754,8 @@ def fit_observed(
     solution = _solve(problem, start_d, options, fixed_covariance)
     theta, d, covariance, chi_square = solution.theta, solution.d, solution.covariance, solution.chi_square
     names, parameter_covariance = _parameter_covariance(problem, theta, d, covariance)
-    parameter_covariance = parameter_covariance + _ar_error_covariance(problem, solution, short.covariance)
+    ar_error = _ar_error_covariance(problem, solution, short.covariance)
+    parameter_covariance = parameter_covariance + ar_error
     values = dict(zip(options.components, theta, strict=True))
     model = _model_with(observed.sample_rate, observed.mean, values, d, ar)
     errors = dict(zip(names, np.sqrt(np.maximum(np.diag(parameter_covariance), 0.0)), strict=True))
@@ -759,6 +785,92 @@ def fit_observed(
         tau_covariance=covariance,
         iterations=solution.evaluations,
         ar_coefficient_errors=_coefficient_errors(short),
+        ar_error_covariance=ar_error,
+    )
+
+
+# --- intervals by test inversion ---------------------------------------------------------------------
+
+
+def inverted_interval(fit: FitResult, name: str, level: float = 0.95) -> tuple[float, float]:
+    """Interval of a fitted variance ``name`` at ``level`` by inverting the Wald test with the standard error
+    at each candidate value: {θ₀ ≥ 0 : |θ̂ − θ₀| ≤ z s(θ₀)}, s(θ₀)² the parameter's entry of (JᵀC(θ₀)⁻¹J)⁻¹
+    (plus the AR coefficients' part, ``fit.ar_error_covariance``), C(θ₀) the covariance across τ of the
+    fitted model with that variance at θ₀ (module text). The upper end is inf when no θ₀ is excluded up to
+    2⁴⁰ standard errors above the estimate."""
+    names = [_PARAMETER[c] for c in fit.components]
+    if name not in names:
+        raise ValueError(f"name={name!r}: the inverted interval is for the fitted variances {names}")
+    level = float(check_positive_real("level", level))
+    if not level < 1:
+        raise ValueError(f"level={level!r}: must be in (0, 1)")
+    z = float(stats.norm.ppf((1 + level) / 2))
+    error_at = _error_at_candidate(fit, names.index(name))
+    estimate = fit.value(name)
+    spread = error_at(estimate)
+    if not spread > 0:
+        return estimate, estimate
+    lower = _inverted_end(lambda value: estimate - value - z * error_at(value), estimate, -spread)
+    upper = _inverted_end(lambda value: value - estimate - z * error_at(value), estimate, spread)
+    return lower, upper
+
+
+def _error_at_candidate(fit: FitResult, index: int) -> Callable[[float], float]:
+    """s(θ₀) of the fitted variance at ``index`` (:func:`inverted_interval`), the others at the estimate."""
+    used, allan = fit.used, fit.allan
+    components = fit.components
+    d = float(fit.model.flicker_d)
+    problem = _Problem(
+        np.asarray(allan.samples_per_cluster)[used],
+        allan.avar[used],
+        components,
+        tuple(fit.model.ar_coefficients),
+        fit.length,
+        fit.model.sample_rate,
+        allan.estimator,
+        "flicker_d" in fit.parameters,
+    )
+    theta = np.array([fit.value(_PARAMETER[c]) for c in components])
+    fixed = 0.0 if fit.ar_error_covariance is None else float(fit.ar_error_covariance[index, index])
+
+    def error_at(value: float) -> float:
+        candidate = theta.copy()
+        candidate[index] = value
+        model = _model_with(
+            problem.sample_rate, 0.0, dict(zip(components, candidate, strict=True)), d, problem.ar
+        )
+        covariance = allan_estimate_covariance(
+            model, problem.sizes, problem.length, estimator=problem.estimator, bound=False
+        ).covariance
+        for jitter in (0.0, CANDIDATE_JITTER):
+            try:  # far above the data one term dominates and C can be indefinite to rounding
+                loaded = covariance + jitter * np.diag(np.diag(covariance))
+                variance = _parameter_covariance(problem, candidate, d, loaded)[1][index, index]
+            except np.linalg.LinAlgError:
+                continue
+            return math.sqrt(max(float(variance) + fixed, 0.0))
+        return math.inf  # not excluded: the candidate's spread cannot be told
+
+    return error_at
+
+
+def _inverted_end(excess: Callable[[float], float], estimate: float, step: float) -> float:
+    """The root of ``excess`` (negative at the estimate, increasing away from it) on the side of ``step``,
+    by Brent's method to 10⁻⁴ of |step|: below, between 0 and the estimate (0 when even θ₀ ≈ 0 is not
+    excluded); above, bracketed by doubling steps (inf when none up to 2⁴⁰ steps is excluded)."""
+    tolerance = 1e-4 * abs(step)
+    if step < 0:
+        floor = max(estimate, abs(step)) * 1e-12  # C is singular with the only term at exactly 0
+        if estimate <= floor or excess(floor) <= 0:
+            return 0.0
+        return float(brentq(excess, floor, estimate, xtol=tolerance))
+    reach = step
+    while excess(estimate + reach) <= 0:
+        reach *= 2.0
+        if reach > 2.0**40 * step:
+            return math.inf
+    return float(
+        brentq(excess, estimate + reach / 2.0 if reach > step else estimate, estimate + reach, xtol=tolerance)
     )
 
 

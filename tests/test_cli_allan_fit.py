@@ -222,3 +222,25 @@ def test_fit_all_iterations_takes_every_one(recording_csv, capsys):
 def _method(document: dict, axis: str) -> str:
     (file,) = document["files"]
     return file["columns"][axis]["method"]
+
+
+def test_fit_prints_the_gauss_markov_term_with_its_errors(tmp_path, capsys):
+    from carousel_theory.data import recording_from_arrays
+    from carousel_theory.noise_model import NoiseModel
+    from carousel_theory.simulate import sample_noise, write_recording
+
+    model = NoiseModel(sample_rate=100.0, white_variance=3.6e-5, ar_variance=4e-6, ar_coefficients=(0.8,))
+    y = sample_noise(model, 200_000, rng=np.random.default_rng(8))
+    path = write_recording(recording_from_arrays({"wx": y}, sample_rate=100.0), tmp_path / "gm.npz")
+    assert main(["fit", str(path), "--model", "white,ar", "--json"]) == 0
+    column = json.loads(capsys.readouterr().out)["files"][0]["columns"]["wx"]
+    (phi,), (error,) = column["model"]["ar_coefficients"], column["ar_coefficient_errors"]
+    assert abs(phi - 0.8) <= 4 * error and 0 < error < 0.01  # measured over seeds: about 0.0045
+    assert main(["fit", str(path), "--model", "white,ar"]) == 0
+    out = capsys.readouterr().out
+    tau = -1.0 / (100.0 * np.log(phi))  # the correlation time of the printed φ: 0.045 s at φ = 0.8
+    assert f"AR(1) coefficients φ                         {phi:.4g} ± {error:.2g}" in out
+    assert f"Gauss–Markov correlation time τ_c            {tau:.4g} ± " in out
+    report = tmp_path / "gm.md"
+    assert main(["fit", str(path), "--model", "white,ar", "--markdown", str(report)]) == 0
+    assert f"| AR coefficients φ | — | {phi:.3g} ± {error:.2g} |" in report.read_text(encoding="utf-8")

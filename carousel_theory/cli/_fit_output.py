@@ -136,6 +136,7 @@ def fit_as_json(fit: FitResult, output: OutputUnits) -> dict[str, Any]:
         "degrees_of_freedom": fit.degrees_of_freedom,
         "p_value": fit.p_value,
         "at_bound": list(fit.at_bound),
+        "ar_coefficient_errors": list(fit.ar_coefficient_errors),
         "method": fit.method,
         "allan": allan_record(fit.allan, output),
         "model_avar": output.variances(fit.model_avar).tolist(),
@@ -178,6 +179,29 @@ def fit_lines(name: str, fit: FitResult, output: OutputUnits) -> list[str]:
         f"    {'minimum Allan deviation of the data':44s} {minimum:.4g} {display_unit(output.rate)} "
         f"at τ = {fit.allan.tau[best]:.4g} s"
     )
+    lines += _ar_lines(fit)
     if fit.at_bound:
         lines.append(f"    held at zero: {', '.join(fit.at_bound)}")
+    return lines
+
+
+def _ar_lines(fit: FitResult) -> list[str]:
+    """The AR (Gauss–Markov) term: its innovation variance and its coefficients with their standard errors
+    (an AR(1)'s correlation time τ_c = −1/(f_s ln φ) with the error d τ_c/dφ · s_φ); none without AR."""
+    coefficients = fit.model.ar_coefficients
+    if "ar_variance" not in fit.standard_errors or not len(coefficients):
+        return []
+    variance = Quantity(fit.model.ar_variance, fit.standard_errors["ar_variance"], "(rad/s)^2")
+    errors = fit.ar_coefficient_errors or (math.nan,) * len(coefficients)
+    lines = [f"    {'AR innovation variance (per sample)':44s} {variance.text()}"]
+    phi = ", ".join(
+        f"{c:.4g} ± {e:.2g}" if math.isfinite(e) else f"{c:.4g} (given)"
+        for c, e in zip(coefficients, errors, strict=True)
+    )
+    lines.append(f"    {f'AR({len(coefficients)}) coefficients φ':44s} {phi}")
+    if len(coefficients) == 1 and 0 < coefficients[0] < 1:
+        rate, value = fit.model.sample_rate, float(coefficients[0])
+        tau = -1.0 / (rate * math.log(value))
+        tau_error = errors[0] / (rate * value * math.log(value) ** 2)
+        lines.append(f"    {'Gauss–Markov correlation time τ_c':44s} {Quantity(tau, tau_error, 's').text()}")
     return lines

@@ -215,6 +215,7 @@ def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.
     for key, label, unit in (
         ("flicker_variance", "1/f σ_w² (eq. (3))", "(rad/s)²"),
         ("flicker_d", "1/f order d", "—"),
+        ("ar_variance", "AR innovation variance (per sample)", "(rad/s)²"),
     ):
         if any(key in fits[a].standard_errors for a in axes):
             lines.append(
@@ -229,7 +230,24 @@ def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.
                     ],
                 )
             )
-    return lines
+    return lines + _ar_rows(fits, axes)
+
+
+def _ar_rows(fits: dict[str, FitResult], axes: list[str]) -> list[str]:
+    """The AR coefficients with their standard errors (``given`` when they were), when a term is fitted."""
+    cells = []
+    for axis in axes:
+        fit = fits[axis]
+        coefficients = fit.model.ar_coefficients if "ar_variance" in fit.standard_errors else ()
+        errors = fit.ar_coefficient_errors or (math.nan,) * len(coefficients)
+        cells.append(
+            ", ".join(
+                _format(c, e) if math.isfinite(e) else f"{c:.3g} (given)"
+                for c, e in zip(coefficients, errors, strict=True)
+            )
+            or "—"
+        )
+    return [_row("AR coefficients φ", "—", cells)] if any(c != "—" for c in cells) else []
 
 
 def _data_rows(fits: dict[str, FitResult], axes: list[str]) -> list[str]:
