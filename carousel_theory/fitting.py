@@ -226,7 +226,10 @@ class FitResult:
         if not level < 1:
             raise ValueError(f"level={level!r}: must be in (0, 1)")
         if method == "inverted":
-            return inverted_interval(self, name, level)
+            key = (name, level)
+            if key not in self._inverted_intervals:
+                self._inverted_intervals[key] = inverted_interval(self, name, level)
+            return self._inverted_intervals[key]
         if method != "chi-square":
             raise ValueError(f"method={method!r}: must be 'chi-square' or 'inverted'")
         value, error = self.value(name), self.standard_errors[name]
@@ -240,6 +243,11 @@ class FitResult:
             degrees * value / float(stats.chi2.ppf((1 + level) / 2, degrees)),
             degrees * value / float(stats.chi2.ppf((1 - level) / 2, degrees)),
         )
+
+    @functools.cached_property
+    def _inverted_intervals(self) -> dict[tuple[str, float], tuple[float, float]]:
+        """The intervals by test inversion computed so far (each costs a root search over covariances)."""
+        return {}
 
     def value(self, name: str) -> float:
         """The estimate of a parameter by its name in ``standard_errors``."""
@@ -856,9 +864,9 @@ def _error_at_candidate(fit: FitResult, index: int) -> Callable[[float], float]:
 
 def _inverted_end(excess: Callable[[float], float], estimate: float, step: float) -> float:
     """The root of ``excess`` (negative at the estimate, increasing away from it) on the side of ``step``,
-    by Brent's method to 10⁻⁴ of |step|: below, between 0 and the estimate (0 when even θ₀ ≈ 0 is not
+    by Brent's method to 10⁻³ of |step|: below, between 0 and the estimate (0 when even θ₀ ≈ 0 is not
     excluded); above, bracketed by doubling steps (inf when none up to 2⁴⁰ steps is excluded)."""
-    tolerance = 1e-4 * abs(step)
+    tolerance = 1e-3 * abs(step)
     if step < 0:
         floor = max(estimate, abs(step)) * 1e-12  # C is singular with the only term at exactly 0
         if estimate <= floor or excess(floor) <= 0:

@@ -11,10 +11,12 @@ import pytest
 
 from carousel_theory.fit_diagnostics import (
     READ_OFF_TOLERANCE,
+    WEAK_TERM_LEVEL,
     angle_random_walk_read_off,
     fit_notices,
     read_off_notice,
     rejection_notice,
+    weak_term_notices,
 )
 from carousel_theory.fitting import fit_noise_model
 from carousel_theory.noise_model import NoiseModel
@@ -87,3 +89,15 @@ def test_a_model_that_holds_gives_no_notice():
     fit = fit_noise_model(y, RATE, ("white", "rrw"))
     assert fit.p_value >= 0.01 and not fit.at_bound
     assert fit_notices(fit) == []
+
+
+def test_a_weakly_determined_walk_is_reported_with_its_interval_by_test_inversion():
+    model = NoiseModel(sample_rate=RATE, white_variance=3.6e-5, rrw_variance=1e-14)
+    fit = fit_noise_model(sample_noise(model, 1_000_000, rng=np.random.default_rng(3)), RATE)
+    relative = fit.standard_errors["rrw_variance"] / fit.model.rrw_variance
+    assert relative > WEAK_TERM_LEVEL  # the walk is known to about 80 % on this record
+    (notice,) = weak_term_notices(fit)  # the white noise, known to 0.2 %, gives none
+    low, high = fit.interval("rrw_variance", method="inverted")
+    assert notice.kind == "weakly_determined" and notice.message.startswith("rrw_variance")
+    assert f"standard error {relative:.0%}" in notice.message and f"{low:.3g} … {high:.3g}" in notice.message
+    assert notice in fit_notices(fit)
