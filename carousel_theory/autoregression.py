@@ -65,7 +65,10 @@ from carousel_theory.noise_model import ar_autocovariance, ar_decay_lags, ar_lon
 
 __all__ = [
     "ShortNoiseEstimate",
+    "bartlett_covariance",
     "coefficient_covariance",
+    "coefficient_gradient",
+    "coefficients_from_autocovariance",
     "high_pass_window",
     "high_passed_autocovariance",
     "short_noise_coefficients",
@@ -237,6 +240,18 @@ def _white_and_ar_parts(
 # --- the coefficients' covariance -------------------------------------------------------------------
 
 
+def coefficients_from_autocovariance(
+    autocovariance: np.ndarray, n: int, estimator: str, maximum_order: int
+) -> tuple[float, ...]:
+    """The coefficients ``estimator`` (:data:`PLAIN` or :data:`HIGH_ORDER`) finds in a sample
+    autocovariance γ̂(0 … J) of n samples (the map that :func:`coefficient_gradient` linearizes)."""
+    if estimator == PLAIN:
+        return _plain(autocovariance, n, maximum_order)
+    if estimator == HIGH_ORDER:
+        return _beside_white(autocovariance, n, maximum_order)
+    raise ValueError(f"estimator={estimator!r}: must be {PLAIN!r} or {HIGH_ORDER!r}")
+
+
 def _estimate(
     autocovariance: np.ndarray, n: int, coefficients: tuple[float, ...], estimator: str, maximum_order: int
 ) -> ShortNoiseEstimate:
@@ -261,11 +276,11 @@ def coefficient_covariance(
     reach = len(coefficients) + 2 + ar_decay_lags(coefficients) + 2 * lags + 1
     model = innovation * np.array(ar_autocovariance(coefficients, reach))
     model[0] += white
-    gradient = _linearization(autocovariance, coefficients, estimator, maximum_order)
-    return gradient @ _autocovariance_covariance(model, lags, n) @ gradient.T
+    gradient = coefficient_gradient(autocovariance, coefficients, estimator, maximum_order)
+    return gradient @ bartlett_covariance(model, lags, n) @ gradient.T
 
 
-def _linearization(
+def coefficient_gradient(
     autocovariance: np.ndarray, coefficients: tuple[float, ...], estimator: str, maximum_order: int
 ) -> np.ndarray:
     """G (p × (J + 1)) with dφ = G dγ̂: M⁺ (db − dM φ), M and b read from γ̂ at the estimator's lags."""
@@ -284,7 +299,7 @@ def _linearization(
     return np.linalg.pinv(autocovariance[matrix_lags]) @ derivative
 
 
-def _autocovariance_covariance(model: np.ndarray, lags: int, n: int) -> np.ndarray:
+def bartlett_covariance(model: np.ndarray, lags: int, n: int) -> np.ndarray:
     """Bartlett's Cov(γ̂(h), γ̂(k)), h, k = 0 … ``lags``, for the autocovariance ``model`` (γ(0), γ(1), …;
     zero beyond) and n samples: (A(|k − h|) + A(h + k))/n with A(s) = Σ_j γ(j) γ(j + s)."""
     symmetric = np.concatenate((model[:0:-1], model))

@@ -16,10 +16,9 @@ import pytest
 from carousel_theory.autoregression import (
     HIGH_ORDER,
     PLAIN,
-    _autocovariance_covariance,
-    _beside_white,
-    _linearization,
-    _plain,
+    bartlett_covariance,
+    coefficient_gradient,
+    coefficients_from_autocovariance,
     short_noise_estimate,
 )
 from carousel_theory.fitting import fit_noise_model
@@ -53,7 +52,7 @@ def _exact_finite_covariance(gamma: np.ndarray, n: int, h: int, k: int) -> float
 def test_bartlett_covariance_matches_the_exact_finite_sample_covariance():
     gamma = _white_and_ar_autocovariance(200)
     n, lags = 4000, 6
-    bartlett = _autocovariance_covariance(gamma, lags, n)
+    bartlett = bartlett_covariance(gamma, lags, n)
     scale = float(np.sqrt(np.outer(np.diag(bartlett), np.diag(bartlett))).max())
     for h in range(lags + 1):
         for k in range(lags + 1):
@@ -64,20 +63,20 @@ def test_bartlett_covariance_matches_the_exact_finite_sample_covariance():
 
 def test_bartlett_covariance_of_white_noise_is_the_textbook_one():
     gamma = np.array([3.0])
-    covariance = _autocovariance_covariance(gamma, 3, 100)
+    covariance = bartlett_covariance(gamma, 3, 100)
     # Var γ̂(0) = 2σ⁴/n, Var γ̂(k) = σ⁴/n for k ≥ 1, uncorrelated.
     assert np.allclose(covariance, np.diag([18.0, 9.0, 9.0, 9.0]) / 100, rtol=1e-15, atol=0)
 
 
-@pytest.mark.parametrize(
-    ("estimator", "solve", "lags"),
-    [(PLAIN, lambda g: _plain(g, 10**12, 4), 4), (HIGH_ORDER, lambda g: _beside_white(g, 10**12, 4), 24)],
-)
-def test_linearization_equals_central_differences_of_the_estimator(estimator, solve, lags):
+@pytest.mark.parametrize(("estimator", "lags"), [(PLAIN, 4), (HIGH_ORDER, 24)])
+def test_linearization_equals_central_differences_of_the_estimator(estimator, lags):
+    def solve(gamma: np.ndarray) -> tuple[float, ...]:
+        return coefficients_from_autocovariance(gamma, 10**12, estimator, 4)
+
     gamma = _white_and_ar_autocovariance(lags)
     coefficients = solve(gamma)
     assert len(coefficients) == (4 if estimator == PLAIN else 1)  # plain YW sees the sum: an ARMA
-    gradient = _linearization(gamma, coefficients, estimator, 4)
+    gradient = coefficient_gradient(gamma, coefficients, estimator, 4)
     step = 1e-6 * gamma[0]
     for lag in range(lags + 1):
         up, down = gamma.copy(), gamma.copy()
@@ -114,3 +113,11 @@ def test_fitted_ar_variance_error_carries_the_coefficient_error():
     assert min(widened) > 1.0
     # The spread of 40 standard normal values lies in [0.75, 1.3] with probability > 0.99.
     assert 0.75 <= float(np.std(z, ddof=1)) <= 1.3
+
+
+def test_an_unknown_estimator_is_refused_by_name():
+    gamma = _white_and_ar_autocovariance(24)
+    with pytest.raises(ValueError, match="estimator='Burg'"):
+        coefficients_from_autocovariance(gamma, 1000, "Burg", 4)
+    with pytest.raises(ValueError, match="estimator='Burg'"):
+        coefficient_gradient(gamma, (0.6,), "Burg", 4)
