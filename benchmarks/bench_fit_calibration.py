@@ -81,20 +81,10 @@ class Tally:
     at_zero: dict[str, int] = field(default_factory=dict)
 
 
-def _truth(model: NoiseModel) -> dict[str, float]:
-    return {
-        "white_variance": model.white_variance,
-        "rrw_variance": model.rrw_variance,
-        "flicker_variance": model.flicker_variance,
-        "flicker_d": float(model.flicker_d),
-        "ar_variance": model.ar_variance,
-    }
-
-
 def _record(tally: Tally, fit: FitResult, truth: NoiseModel) -> None:
     tally.p_values.append(fit.p_value)
-    true_values = _truth(truth)
-    estimates = _truth(fit.model)
+    # The models here have no quantization, the one parameter whose name is not a NoiseModel attribute.
+    true_values = {name: float(getattr(truth, name)) for name in fit.parameters}
     for name in fit.parameters:
         if name != "flicker_d":
             low, high = fit.interval(name, method="inverted")
@@ -102,7 +92,7 @@ def _record(tally: Tally, fit: FitResult, truth: NoiseModel) -> None:
         if name in fit.at_bound or fit.standard_errors.get(name, 0.0) <= 0.0:
             tally.at_zero[name] = tally.at_zero.get(name, 0) + 1
             continue
-        z = (estimates[name] - true_values[name]) / fit.standard_errors[name]
+        z = (fit.value(name) - true_values[name]) / fit.standard_errors[name]
         tally.z.setdefault(name, []).append(z)
         if name != "flicker_d":
             low, high = fit.interval(name)

@@ -102,6 +102,14 @@ def check_positive_real(name: str, value: Any, allow_zero: bool = False) -> Any:
     return result
 
 
+def check_probability(name: str, value: Any) -> float:
+    """A level or confidence strictly inside (0, 1)."""
+    result = float(check_positive_real(name, value))
+    if not result < 1:
+        raise ValueError(f"{name}={value!r}: must be in (0, 1)")
+    return result
+
+
 def check_fractional_order(name: str, value: Any, low: Any = 0, high: Any = 1) -> Any:
     """The degree of fractional integration d, strictly inside (low, high).
 

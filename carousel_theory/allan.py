@@ -53,6 +53,7 @@ from carousel_theory._validation import (
     check_fractional_order,
     check_positive_integer,
     check_positive_real,
+    check_probability,
 )
 from carousel_theory.binary_scaling import binary_exponent, scaled_by_power_of_two
 from carousel_theory.data import RESERVED_COLUMN_NAMES, TIME_COLUMN_NAMES, Recording, recording_from_arrays
@@ -581,9 +582,7 @@ def _has_flicker(noise: Any) -> bool:
 def _check_options(sample_rate: Any, estimator: Any, noise: Any, confidence: Any) -> tuple[float, str, float]:
     sample_rate = float(check_positive_real("sample_rate", sample_rate))
     estimator = _check_estimator(estimator)
-    confidence = float(check_positive_real("confidence", confidence))
-    if not confidence < 1:
-        raise ValueError(f"confidence={confidence!r}: must be in (0, 1)")
+    confidence = check_probability("confidence", confidence)
     if isinstance(noise, str) and noise not in NOISE_TYPES:
         raise ValueError(f"noise={noise!r}: must be one of {NOISE_TYPES} or a NoiseModel")
     return sample_rate, estimator, confidence

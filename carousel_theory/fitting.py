@@ -71,6 +71,7 @@ from carousel_theory._validation import (
     check_fractional_order,
     check_positive_integer,
     check_positive_real,
+    check_probability,
 )
 from carousel_theory.allan import AllanResult, allan_variance, check_tau_range, with_model_intervals
 from carousel_theory.autoregression import (
@@ -222,9 +223,7 @@ class FitResult:
         """
         if name not in self.standard_errors:
             raise ValueError(f"name={name!r}: must be one of {sorted(self.standard_errors)}")
-        level = float(check_positive_real("level", level))
-        if not level < 1:
-            raise ValueError(f"level={level!r}: must be in (0, 1)")
+        level = check_probability("level", level)
         if method == "inverted":
             key = (name, level)
             if key not in self._inverted_intervals:
@@ -809,9 +808,7 @@ def inverted_interval(fit: FitResult, name: str, level: float = 0.95) -> tuple[f
     names = [_PARAMETER[c] for c in fit.components]
     if name not in names:
         raise ValueError(f"name={name!r}: the inverted interval is for the fitted variances {names}")
-    level = float(check_positive_real("level", level))
-    if not level < 1:
-        raise ValueError(f"level={level!r}: must be in (0, 1)")
+    level = check_probability("level", level)
     z = float(stats.norm.ppf((1 + level) / 2))
     error_at = _error_at_candidate(fit, names.index(name))
     estimate = fit.value(name)
@@ -955,9 +952,7 @@ def fit_noise_model(
     observed = observe_allan(y, sample_rate, estimator=estimator, keep_record="ar" in options.components)
     check_noise_signal(y, "y")
     if confidence != observed.allan.confidence:
-        confidence = float(check_positive_real("confidence", confidence))
-        if not confidence < 1:
-            raise ValueError(f"confidence={confidence!r}: must be in (0, 1)")
+        confidence = check_probability("confidence", confidence)
         observed = replace(observed, allan=replace(observed.allan, confidence=confidence))
     return fit_observed(observed, options)
 

@@ -18,7 +18,7 @@ from carousel_theory.fitting import FitResult
 from carousel_theory.noise_parameters import NoiseParameter, Quantity, noise_parameters
 from carousel_theory.units import display_unit
 
-__all__ = ["FIT_NULL_REASONS", "allan_record", "fit_as_json", "fit_lines"]
+__all__ = ["FIT_NULL_REASONS", "allan_record", "ar_coefficients_text", "fit_as_json", "fit_lines"]
 
 #: Why a standard error is null in ``fit --json``: a term held at zero has none (see ``at_bound``).
 FIT_NULL_REASONS = {
@@ -185,6 +185,19 @@ def fit_lines(name: str, fit: FitResult, output: OutputUnits) -> list[str]:
     return lines
 
 
+def ar_coefficients_text(fit: FitResult, digits: int) -> str:
+    """The fitted AR coefficients as ``φ ± error`` (``φ (given)`` when they were given), ``digits``
+    significant digits; "" without an AR term."""
+    if "ar_variance" not in fit.standard_errors:
+        return ""
+    coefficients = fit.model.ar_coefficients
+    errors = fit.ar_coefficient_errors or (math.nan,) * len(coefficients)
+    return ", ".join(
+        f"{c:.{digits}g} ± {e:.2g}" if math.isfinite(e) else f"{c:.{digits}g} (given)"
+        for c, e in zip(coefficients, errors, strict=True)
+    )
+
+
 def _ar_lines(fit: FitResult) -> list[str]:
     """The AR (Gauss–Markov) term: its innovation variance and its coefficients with their standard errors
     (an AR(1)'s correlation time τ_c = −1/(f_s ln φ) with the error d τ_c/dφ · s_φ); none without AR."""
@@ -192,16 +205,11 @@ def _ar_lines(fit: FitResult) -> list[str]:
     if "ar_variance" not in fit.standard_errors or not len(coefficients):
         return []
     variance = Quantity(fit.model.ar_variance, fit.standard_errors["ar_variance"], "(rad/s)^2")
-    errors = fit.ar_coefficient_errors or (math.nan,) * len(coefficients)
     lines = [f"    {'AR innovation variance (per sample)':44s} {variance.text()}"]
-    phi = ", ".join(
-        f"{c:.4g} ± {e:.2g}" if math.isfinite(e) else f"{c:.4g} (given)"
-        for c, e in zip(coefficients, errors, strict=True)
-    )
-    lines.append(f"    {f'AR({len(coefficients)}) coefficients φ':44s} {phi}")
-    if len(coefficients) == 1 and 0 < coefficients[0] < 1:
+    lines.append(f"    {f'AR({len(coefficients)}) coefficients φ':44s} {ar_coefficients_text(fit, 4)}")
+    if len(coefficients) == 1 and 0 < coefficients[0] < 1 and fit.ar_coefficient_errors:
         rate, value = fit.model.sample_rate, float(coefficients[0])
         tau = -1.0 / (rate * math.log(value))
-        tau_error = errors[0] / (rate * value * math.log(value) ** 2)
+        tau_error = fit.ar_coefficient_errors[0] / (rate * value * math.log(value) ** 2)
         lines.append(f"    {'Gauss–Markov correlation time τ_c':44s} {Quantity(tau, tau_error, 's').text()}")
     return lines

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from carousel_theory.cli._fit_output import FIT_NULL_REASONS, fit_as_json, fit_lines
+from carousel_theory.cli._fit_output import FIT_NULL_REASONS, ar_coefficients_text, fit_as_json, fit_lines
 from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
 from carousel_theory.cli.allan import add_recording_arguments, read_recording
 from carousel_theory.fit_defaults import DEFAULT_TAU_MIN, DEFAULT_TAU_MIN_OCTAVES, LADDER, select_default_fit
@@ -235,18 +235,7 @@ def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.
 
 def _ar_rows(fits: dict[str, FitResult], axes: list[str]) -> list[str]:
     """The AR coefficients with their standard errors (``given`` when they were), when a term is fitted."""
-    cells = []
-    for axis in axes:
-        fit = fits[axis]
-        coefficients = fit.model.ar_coefficients if "ar_variance" in fit.standard_errors else ()
-        errors = fit.ar_coefficient_errors or (math.nan,) * len(coefficients)
-        cells.append(
-            ", ".join(
-                _format(c, e) if math.isfinite(e) else f"{c:.3g} (given)"
-                for c, e in zip(coefficients, errors, strict=True)
-            )
-            or "—"
-        )
+    cells = [ar_coefficients_text(fits[axis], 3) or "—" for axis in axes]
     return [_row("AR coefficients φ", "—", cells)] if any(c != "—" for c in cells) else []
 
 
