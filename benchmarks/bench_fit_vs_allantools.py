@@ -2,7 +2,7 @@
 τ-covariance against the dense reference.
 
 Usage: ``python benchmarks/bench_fit_vs_allantools.py [--sizes 1000000 10000000] [--models white,rrw ...]
-[--records K] [--breakdown]``
+[--records K] [--phi 0.8 0.95 ...] [--breakdown]``
 
 For each size a seeded axis of white + rate random walk + 1/f (d = 0.5) + first-order Gauss–Markov noise
 at 100 Hz is drawn (:func:`carousel_theory.simulate.sample_noise`). Timed, once each, in this process:
@@ -10,16 +10,17 @@ at 100 Hz is drawn (:func:`carousel_theory.simulate.sample_noise`). Timed, once 
 with each requested component set (the fit includes its own overlapping Allan variance). Prints the
 wall times, the ratio fit / allantools (the target is ≤ 3), the same ratio of CPU times of this
 process (steadier on a shared machine), and the fit's χ² test (the model is the one drawn, so it should
-not be rejected). With ``--records K`` K records of each size are drawn and timed
-in turn: the first fit of the process also pays its one-time work (caches of Gauss rules, windows and
-lambdified closed forms, and the pairs' structure), the later ones are what a session fitting many axes
-pays per axis (the structure is kept for the next record of the same length whose AR reach rounds to
-the same multiple of 32 lags, :mod:`carousel_theory.lag_quadrature`); the first ratio and the median of
-the later ones are printed. A fit stops re-evaluating its covariance across τ once a step moved no
-parameter by more than 0.05 of its standard error, so records differ in the evaluations they take (each
-row shows them). With ``--breakdown`` each fit is run once more and its CPU time is
-split into the τ-covariances (the pairs' structure, the values at exact lags and Gauss nodes, the sums
-and the rest) and everything else.
+not be rejected). With ``--records K`` K records of each size are drawn and timed in turn: the first fit
+of the process also pays its one-time work (caches of Gauss rules, windows and lambdified closed forms,
+and the pairs' structure), the later ones are what a session fitting many axes pays per axis (the
+structure is kept for the next record of the same length, whatever its Gauss–Markov coefficient,
+:mod:`carousel_theory.lag_quadrature`); the first ratio and the median of the later ones are printed.
+``--phi`` draws the axes with other Gauss–Markov coefficients (the AR term's long-run variance kept): the
+fit's cost should not grow with the correlation time. A fit stops re-evaluating its covariance across τ
+once a step moved no parameter by more than 0.05 of its standard error, so records differ in the
+evaluations they take (each row shows them). With ``--breakdown`` each fit is run once more and its CPU
+time is split into the τ-covariances (the pairs' structure, the values at exact lags and Gauss nodes, the
+sums and the rest) and everything else.
 
 Then, at ``--dense-size`` samples, the covariance of the Allan variance estimates across octave τ from
 :func:`carousel_theory.tau_covariance.allan_estimate_covariance` is compared with the dense O(n)-per-pair
@@ -34,8 +35,11 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import itertools
+import math
 import time
 from collections.abc import Iterator
+from dataclasses import replace
 
 import allantools
 import numpy as np
@@ -160,11 +164,19 @@ def _breakdown(y: np.ndarray, components: tuple[str, ...]) -> None:
     )
 
 
-def _timed_records(args: argparse.Namespace, size: int, rng: np.random.Generator) -> dict[str, list[float]]:
+def _truth(phi: float) -> NoiseModel:
+    """The drawn model with the Gauss–Markov coefficient φ, its long-run variance kept (that of φ = 0.8)."""
+    long_run = TRUTH.ar_variance / (1.0 - TRUTH.ar_coefficients[0]) ** 2
+    return replace(TRUTH, ar_coefficients=(phi,), ar_variance=long_run * (1.0 - phi) ** 2)
+
+
+def _timed_records(
+    args: argparse.Namespace, size: int, rng: np.random.Generator, phi: float
+) -> dict[str, list[float]]:
     """Each record of ``size`` samples: allantools, then each model's fit, one row each; the CPU ratios."""
     ratios: dict[str, list[float]] = {text: [] for text in args.models}
     for record in range(args.records):
-        y = sample_noise(TRUTH, size, rng=rng)
+        y = sample_noise(_truth(phi), size, rng=rng)
         peer, peer_cpu, _ = _timed_both(
             lambda y=y: allantools.oadev(y, rate=100.0, data_type="freq", taus="octave")
         )
@@ -193,6 +205,9 @@ def main() -> None:
     )
     parser.add_argument("--dense-size", type=int, default=100_000)
     parser.add_argument(
+        "--phi", type=float, nargs="+", default=[0.8], help="Gauss–Markov coefficients of the drawn axes"
+    )
+    parser.add_argument(
         "--breakdown", action="store_true", help="also show where each fit's CPU time goes (one more fit)"
     )
     args = parser.parse_args()
@@ -201,8 +216,9 @@ def main() -> None:
         f"{'samples':>10} {'record':>7} {'model':>22} {'fit (s)':>9} {'allantools (s)':>15} "
         f"{'fit/allantools':>15} {'CPU fit/allantools':>19}"
     )
-    for size in args.sizes:
-        for text, ratios in _timed_records(args, size, rng).items():
+    for size, phi in itertools.product(args.sizes, args.phi):
+        print(f"Gauss–Markov φ = {phi} (τ_c = {-1.0 / (100.0 * math.log(phi)):.3g} s at 100 Hz)")
+        for text, ratios in _timed_records(args, size, rng, phi).items():
             if len(ratios) > 1:
                 print(
                     f"{size:>10} {text:>22}: CPU ratio of the first record {ratios[0]:.2f}, median of the "

@@ -36,7 +36,8 @@ __all__ = ["BLOCK_RATIO", "EXACT_REACH", "GAUSS_POINTS", "LagPlan", "plan_pairs"
 GAUSS_POINTS = 12
 #: A block is at most this fraction of its distance to the nearest breakpoint.
 BLOCK_RATIO = 0.5
-#: Lags within this distance of a breakpoint (plus the AR reach) are summed one by one.
+#: Lags within this distance of a breakpoint (or the finite terms' reach, when longer) are summed one by
+#: one.
 EXACT_REACH = 32
 
 #: Block lengths: ⌊2^{k/4}⌋, k = 0, 1, … (quarter octaves, so that a block is close to BLOCK_RATIO × its

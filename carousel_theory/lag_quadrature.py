@@ -2,17 +2,20 @@
 
 Setting: :mod:`carousel_theory.tau_covariance`. c_ij(δ) = Σ_q w_q H(q − δ) with H the fourth sum of the
 model's increment autocovariance (:mod:`carousel_theory.increment_sums`): the finite terms (white, rate
-random walk, quantization, AR) through one finite γ_z, the 1/f term in closed form. Each H is smooth away
-from x = −2, so c is smooth away from the breakpoints b_q = q + 2; N_ij is linear between 0 and K_j − K_i.
+random walk, quantization) through one finite γ_z, the 1/f term in closed form, and the AR term as white
+noise of its long-run variance plus its geometric modes (:mod:`carousel_theory.ar_modes`; where the
+modes are not accurate, through the finite γ_z truncated at its reach). Each H is smooth away from
+x = −2, so c is smooth away from the breakpoints b_q = q + 2; N_ij is linear between 0 and K_j − K_i.
 
 Scheme (the plan of each pair: :mod:`carousel_theory.lag_plan`)
-    Exact: every integer lag within ``EXACT_REACH`` (and the AR reach) of a breakpoint.
+    Exact: every integer lag within ``EXACT_REACH`` of a breakpoint (or the finite terms' reach: AR
+    modes that turn faster than they decay, a truncated AR γ_z; module text: AR modes).
     Elsewhere: blocks of consecutive lags, each at most ``BLOCK_RATIO`` times its distance to the
     nearest breakpoint (lengths ⌊2^{k/4}⌋, the largest that fits, so that few rules serve every block),
     summed by the p-point discrete Gauss rule of the uniform measure on the block's
     integers (nodes by Golub–Welsch from the discrete Chebyshev recurrence β_k = k²(L² − k²)/(4(4k² − 1))).
     On a block the finite terms are cubic polynomials, so N c² is a polynomial of degree ≤ 7 plus the 1/f
-    part; the rule is exact for degree ≤ 2p − 1.
+    and AR-mode parts; the rule is exact for degree ≤ 2p − 1.
 
 Error bound (proved; reported per entry as ``truncation_bound``)
     Let P interpolate c at the p nodes; N P² has degree ≤ 2p − 1 and agrees with N c² at the nodes, so
@@ -20,7 +23,9 @@ Error bound (proved; reported per entry as ``truncation_bound``)
     c^{(p)}(ξ) π_p/p! with π_p the monic orthogonal polynomial. With B ≥ sup|c^{(p)}|/p! on the block,
     Cauchy–Schwarz and Σ π_p² = h_p = β_0 β_1 ⋯ β_p, Σ P² = Q(c²):
         |error| ≤ B · max N · (2 √(h_p Q(c²)) + B h_p).
-    B: c^{(p)} is the 1/f part only (p ≥ 4). On each branch H = K_d F(j), j = |x + 2|, F(j) =
+    B: c^{(p)} is the 1/f part and the AR modes' (p ≥ 4). The modes add
+    Σ_q |w_q| θ Σ_i |C_i| |Log λ_i|^p |λ_i|^{j_q}/p! (:func:`carousel_theory.ar_modes.mode_derivative_bound`,
+    j_q the block's distance to b_q). For the 1/f part, on each branch H = K_d F(j), j = |x + 2|, F(j) =
     Γ(j + 1 + d)/Γ(j − d) = Γ(z + s)/Γ(z), z = j − d, s = 1 + 2d ∈ (1, 3). For p > s,
     F^{(p)}(z) = (−1)^p/Γ(−s) ∫_0^∞ t^p e^{−(z+s)t} (1 − e^{−t})^{−s−1} dt (the Beta integral, continued
     analytically in s), so F^{(p)} has one sign and |F^{(p)}| decreases; hence
@@ -82,10 +87,17 @@ A fixed 1e-11 relative allowance is not enough: at d ≈ 0.77, m_j/m_i = 16 the 
 relative when the plan changes which lags are exact, and at d ≈ 0.92, m_i = 50, m_j/m_i = 16 by
 1.04e-11 with the plan unchanged.
 
-The exact zone grows with the AR reach; :meth:`LagModel.of` rounds the reach up to a multiple of
-``REACH_STEP`` lags (γ_z is 0 beyond the AR truncation, so a longer reach only adds exact zeros), so that
-the records of one sensor, whose estimated AR coefficients differ in the third digit, share one plan
-(:func:`pair_batch`).
+AR modes. The modes' part of H, G(|x + 2|) = Re Σ_i C_i λ_i^{|x+2|}, is analytic on each side of x = −2
+and continued between the integers, so Gauss blocks cover it like the 1/f part, with its derivative in B,
+and the exact zone does not grow with the correlation time (a Gauss–Markov term of τ_c = 1000 samples
+costs what one of 2 samples costs). In the far tail the Newton series carries the 1/f part and the
+modes' nine-term sum is added (0 where every |λ_i|^j has underflowed); its rounding scale there is
+|c| plus Σ_q |w_q θ G|. Modes that turn faster than they decay (a negative root, a complex pair of
+high frequency) would make B useless while they are alive: the exact zone then grows to their reach
+(:attr:`carousel_theory.ar_modes.ArModes.rough_reach`), as it does with the truncated γ_z when the
+modes are not accurate. :meth:`LagModel.of` rounds such a reach up to a multiple of ``REACH_STEP`` lags
+(a longer reach only adds exact lags), so that the records of one sensor, whose estimated AR
+coefficients differ in the third digit, share one plan (:func:`pair_batch`).
 """
 
 from __future__ import annotations
@@ -98,6 +110,13 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy import sparse, special
 
+from carousel_theory.ar_modes import (
+    ArModes,
+    ar_modes,
+    fourth_sum_of_modes,
+    mode_derivative_bound,
+    underflow_distance,
+)
 from carousel_theory.increment_sums import (
     finite_fourth_sum,
     flicker_fourth_sum_at_distance,
@@ -143,7 +162,9 @@ _DIRECT_WIDTH = 256
 @dataclass(frozen=True)
 class LagModel:
     """The model's fourth sums, prepared once per covariance: a table of the finite H near x = −2, the
-    moments of the finite γ_z for the cubic beyond, and the 1/f parameters."""
+    moments of the finite γ_z for the cubic beyond, the AR term's modes (any argument, module text: AR
+    modes) and the 1/f parameters. ``reach``: the lags from a breakpoint that are summed one by one
+    because of the finite terms (3, or the reach of AR modes that turn faster than they decay)."""
 
     finite_gamma: np.ndarray
     finite_total: float
@@ -152,26 +173,36 @@ class LagModel:
     flicker_variance: float
     flicker_d: float
     reach: int
+    modes: ArModes | None = None
+    mode_variance: float = 0.0
 
     @classmethod
     def of(cls, model: NoiseModel) -> LagModel:
         terms = model.terms()
-        reach = max(3, ar_increment_reach(tuple(model.ar_coefficients))) if "ar" in terms else 3
-        reach = -(-reach // REACH_STEP) * REACH_STEP if "ar" in terms else reach
+        modes = ar_modes(tuple(float(c) for c in model.ar_coefficients)) if "ar" in terms else None
+        if modes is not None:
+            reach = max(3, modes.rough_reach)
+        else:
+            reach = max(3, ar_increment_reach(tuple(model.ar_coefficients))) if "ar" in terms else 3
+        reach = -(-reach // REACH_STEP) * REACH_STEP if reach > 3 else reach
         gamma = np.zeros(reach + 1)
         for name in ("white", "rrw", "quantization", "ar"):
-            if name in terms:
+            if name in terms and not (name == "ar" and modes is not None):
                 taps = increment_autocovariance(name, reach + 1, ar_coefficients=model.ar_coefficients)
                 gamma += terms[name] * taps
+        if modes is not None:  # the AR term: white noise of its long-run variance, and its modes
+            gamma += terms["ar"] * modes.long_run_variance * increment_autocovariance("white", reach + 1)
         total = terms.get("rrw", 0.0)  # Σ γ_z: 1 for the rate random walk, exactly 0 for the others
         low = -reach - 8
         table = finite_fourth_sum(gamma, np.arange(low, reach + 8), total=total)
         flicker = terms.get("flicker", 0.0)
-        return cls(gamma, total, low, table, flicker, float(model.flicker_d), reach)
+        variance = terms.get("ar", 0.0) if modes is not None else 0.0
+        return cls(gamma, total, low, table, flicker, float(model.flicker_d), reach, modes, variance)
 
     def fourth_sum(self, x: np.ndarray) -> np.ndarray:
-        """Σ_t θ_t H_t(x) at points x (integers within the finite terms' reach of −2), element by element:
-        the table within reach + 6 of −2 (it spans −reach − 8 … reach + 7), the cubic beyond, and 1/f."""
+        """Σ_t θ_t H_t(x) at points x (integers within the finite terms' reach of −2; any real x beyond),
+        element by element: the table within reach + 6 of −2 (it spans −reach − 8 … reach + 7), the cubic
+        beyond, the AR modes and 1/f."""
         distance = np.abs(x + 2.0)
         near = distance <= self.reach + 6
         result = np.zeros(np.shape(x))
@@ -179,6 +210,8 @@ class LagModel:
         result[beyond] = _cubic(self, x[beyond])
         if np.any(near):
             result[near] = self.table[np.rint(x[near]).astype(np.int64) - self.table_low]
+        if self.modes is not None:
+            result += self.mode_variance * fourth_sum_of_modes(self.modes, distance)
         if self.flicker_variance:
             result += self.flicker_variance * flicker_fourth_sum_at_distance(distance, self.flicker_d)
         return result
@@ -327,20 +360,43 @@ def _newton_series(
 
 
 def _derivative_bounds(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, ends: np.ndarray) -> np.ndarray:
-    """B ≥ sup|c^{(p)}|/p! on each block (first, last) of the pair ``owner``: the branch bound, and in the
-    far tail the bound through W ≥ 0 and the monotone derivative of γ_z, whichever is smaller."""
-    if not lag_model.flicker_variance:
-        return np.zeros(len(ends))
-    d, breakpoints = lag_model.flicker_d, pairs.positions[owner] + 2.0
+    """B ≥ sup|c^{(p)}|/p! on each block (first, last) of the pair ``owner``: for 1/f the branch bound, and
+    in the far tail the bound through W ≥ 0 and the monotone derivative of γ_z, whichever is smaller;
+    plus the AR modes' (:func:`carousel_theory.ar_modes.mode_derivative_bound` at each ramp's distance)."""
+    bound = np.zeros(len(ends))
+    if not (lag_model.flicker_variance or lag_model.modes is not None):
+        return bound
+    breakpoints = pairs.positions[owner] + 2.0
     distance = np.minimum(np.abs(ends[:, :1] - breakpoints), np.abs(ends[:, 1:] - breakpoints))
-    bound = np.einsum("ij,ij->i", _branch_bound(distance, d), np.abs(pairs.weights[owner]))
+    weights = np.abs(pairs.weights[owner])
+    if lag_model.flicker_variance:
+        flicker = _flicker_derivative_bound(pairs, lag_model, owner, ends, distance, weights)
+        bound += lag_model.flicker_variance * flicker
+    if lag_model.modes is not None:
+        modal = mode_derivative_bound(lag_model.modes, distance, GAUSS_POINTS)
+        bound += lag_model.mode_variance * np.einsum("ij,ij->i", modal, weights)
+    return bound
+
+
+def _flicker_derivative_bound(
+    pairs: _Pairs,
+    lag_model: LagModel,
+    owner: np.ndarray,
+    ends: np.ndarray,
+    distance: np.ndarray,
+    weights: np.ndarray,
+) -> np.ndarray:
+    """The 1/f part of :func:`_derivative_bounds` at unit σ_w² (module text: Error bound), ``distance``
+    from each block to each breakpoint and ``weights`` = |w_q|."""
+    d = lag_model.flicker_d
+    bound = np.einsum("ij,ij->i", _branch_bound(distance, d), weights)
     nearest = np.minimum(pairs.nearest(owner, ends[:, 0]), pairs.nearest(owner, ends[:, 1]))
     tail = nearest > GAUSS_POINTS + 2
     if np.any(tail):
         mass = pairs.m_i[owner[tail]] ** 2 * pairs.m_j[owner[tail]] ** 2
         far = mass * np.abs(flicker_increment_difference(nearest[tail] - GAUSS_POINTS, d, GAUSS_POINTS))
         bound[tail] = np.minimum(bound[tail], far / math.factorial(GAUSS_POINTS))
-    return lag_model.flicker_variance * bound
+    return bound
 
 
 def _far(
@@ -383,6 +439,28 @@ def _nine_term_sum(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: 
     values = lag_model.fourth_sum(pairs.positions[owner] - lags[:, None])
     weights = pairs.weights[owner]
     return _ramp_sum((values[:, k], weights[:, k]) for k in range(values.shape[1]))
+
+
+def _modal_values(
+    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """(Σ_q w_q θ G(|q − δ + 2|), Σ_q |w_q θ G(|q − δ + 2|)|) of the AR modes at ``lags`` of the pairs
+    ``owner`` outside the support (the far tail, where the finite terms' other parts vanish and the 1/f
+    part is the Newton series), the nine products added in the ramps' order. The nearest breakpoint is
+    x₀ − 2 away (:meth:`_Pairs.nearest`); where every mode has underflowed there, both are 0."""
+    assert lag_model.modes is not None
+    total, magnitude = np.zeros(len(lags)), np.zeros(len(lags))
+    alive = np.flatnonzero(pairs.nearest(owner, lags) - 2.0 < underflow_distance(lag_model.modes))
+    if not len(alive):
+        return total, magnitude
+    owner, lags = owner[alive], lags[alive]
+    distance = np.abs(pairs.positions[owner] - lags[:, None] + 2.0)
+    values = lag_model.mode_variance * fourth_sum_of_modes(lag_model.modes, distance)
+    weights = pairs.weights[owner]
+    columns = range(values.shape[1])
+    total[alive] = _ramp_sum((values[:, k], weights[:, k]) for k in columns)
+    magnitude[alive] = _ramp_sum((np.abs(values[:, k]), np.abs(weights[:, k])) for k in columns)
+    return total, magnitude
 
 
 def _ramp_sum(products: Iterator[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
@@ -507,6 +585,8 @@ def _parted_values(
         values[near] = near_values
     if np.any(far):
         values[far], far_errors = _newton_series(pairs, lag_model, owner[far], nearest[far], bounds)
+        if lag_model.modes is not None:
+            values[far] += _modal_values(pairs, lag_model, owner[far], lags[far])[0]
         if far_errors is not None:
             errors[far] = far_errors
     return values, errors
@@ -858,8 +938,10 @@ def rounding_scales(
 ) -> np.ndarray:
     """S at each lag (module text: Rounding): Σ_q |w_q H(q − δ)| where c is the nine-term sum,
     len(W)·|c| where it is the direct sum, |c| in the far tail."""
-    _, _, direct, near = _partition(pairs, lag_model, owner, lags)
+    _, far, direct, near = _partition(pairs, lag_model, owner, lags)
     scales = np.abs(values)
+    if lag_model.modes is not None and np.any(far):
+        scales[far] += _modal_values(pairs, lag_model, owner[far], lags[far])[1]
     scales[direct] *= (2 * pairs.m_i + 2 * pairs.m_j - 3)[owner[direct]]
     if np.any(near):
         terms = lag_model.fourth_sum(pairs.positions[owner[near]] - lags[near][:, None])

@@ -106,6 +106,15 @@ LONG_MODELS = {
     "gauss-markov+white+quantization": NoiseModel(
         sample_rate=1.0, ar_variance=0.3, ar_coefficients=(0.95,), white_variance=1.0, quantization=0.2
     ),
+    # τ_c = 200 samples: the AR modes' Gauss blocks start 32 lags from the breakpoints, within τ_c.
+    "slow-gauss-markov+flicker": NoiseModel(
+        sample_rate=1.0,
+        ar_variance=1e-4,
+        ar_coefficients=(0.995,),
+        white_variance=1.0,
+        flicker_variance=0.1,
+        flicker_d=0.4,
+    ),
 }
 
 
