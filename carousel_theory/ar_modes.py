@@ -27,7 +27,8 @@ so H(x) = Σ_k γ_z(k) p(x − k) − Σ_{k ≥ x+4} γ_z(k) p(x − k). The fir
 Σ_r (−1)^r M_r p^{(r)}(x)/r! with the moments M_r = Σ_k k^r γ_z(k): M_0 = 0 (γ_z sums differences),
 M_1 = M_3 = 0 (γ_z even) and M_2 = Σ_k γ(k)(2k² − (k + 1)² − (k − 1)²) = −2S, so it is −S(x + 2). In the
 second, p(−4 − j) = −C(j + 3, 3) and k ≥ 1, so it adds Σ_i b_i λ_i^{x+4}/(1 − λ_i)⁴ = Σ_i C_i λ_i^{x+2}.
-∎ (:func:`fourth_sum_of_modes` is held to the fourth cumulative sum of the truncated γ_z in the tests.)
+∎ (At 50 digits in ``proofs/proof_ar_modal_fourth_sum.py``; :func:`fourth_sum_of_modes` is held to the
+fourth cumulative sum of the truncated γ_z in the tests.)
 
 Between the integers. The lag quadrature needs H at Gauss nodes: on each side of x = −2 the modal part
 is continued analytically, G(j) = Re Σ_i C_i exp(j Log λ_i), j = |x + 2| (real at the integers, where it
