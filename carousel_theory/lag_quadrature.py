@@ -445,8 +445,8 @@ def _modal_values(
     pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """(Σ_q w_q θ G(|q − δ + 2|), Σ_q |w_q θ G(|q − δ + 2|)|) of the AR modes at ``lags`` of the pairs
-    ``owner`` outside the support (the far tail, where the finite terms' other parts vanish and the 1/f
-    part is the Newton series), the nine products added in the ramps' order. The nearest breakpoint is
+    ``owner`` (in the far tail, where the finite terms' other parts vanish and the 1/f part is the Newton
+    series), the nine products added in the ramps' order. Outside the support the nearest breakpoint is
     x₀ − 2 away (:meth:`_Pairs.nearest`); where every mode has underflowed there, both are 0."""
     assert lag_model.modes is not None
     total, magnitude = np.zeros(len(lags)), np.zeros(len(lags))
@@ -937,12 +937,15 @@ def rounding_scales(
     values: np.ndarray,
 ) -> np.ndarray:
     """S at each lag (module text: Rounding): Σ_q |w_q H(q − δ)| where c is the nine-term sum,
-    len(W)·|c| where it is the direct sum, |c| in the far tail."""
+    len(W)·|c| where it is the direct sum, |c| in the far tail; plus, with AR modes, Σ_q |w_q θ G| where
+    the direct sum or the far tail's series has the modes' nine-term sum beside it."""
     _, far, direct, near = _partition(pairs, lag_model, owner, lags)
     scales = np.abs(values)
-    if lag_model.modes is not None and np.any(far):
-        scales[far] += _modal_values(pairs, lag_model, owner[far], lags[far])[1]
     scales[direct] *= (2 * pairs.m_i + 2 * pairs.m_j - 3)[owner[direct]]
+    if lag_model.modes is not None:  # the modes' nine-term sum beside the Newton series or the direct sum
+        for where in (far, direct):
+            if np.any(where):
+                scales[where] += _modal_values(pairs, lag_model, owner[where], lags[where])[1]
     if np.any(near):
         terms = lag_model.fourth_sum(pairs.positions[owner[near]] - lags[near][:, None])
         scales[near] = np.sum(np.abs(terms * pairs.weights[owner[near]]), axis=1)
