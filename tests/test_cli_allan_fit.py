@@ -244,3 +244,35 @@ def test_fit_prints_the_gauss_markov_term_with_its_errors(tmp_path, capsys):
     report = tmp_path / "gm.md"
     assert main(["fit", str(path), "--model", "white,ar", "--markdown", str(report)]) == 0
     assert f"| AR coefficients φ | — | {phi:.3g} ± {error:.2g} |" in report.read_text(encoding="utf-8")
+
+
+def test_fit_takes_given_ar_coefficients_and_refuses_them_where_they_mean_nothing(tmp_path, capsys):
+    from carousel_theory.data import recording_from_arrays
+    from carousel_theory.noise_model import NoiseModel
+    from carousel_theory.simulate import sample_noise, write_recording
+
+    model = NoiseModel(sample_rate=100.0, white_variance=3.6e-5, ar_variance=4e-6, ar_coefficients=(0.8,))
+    y = sample_noise(model, 50_000, rng=np.random.default_rng(9))
+    path = write_recording(recording_from_arrays({"wx": y}, sample_rate=100.0), tmp_path / "gm.npz")
+    command = ["fit", str(path), "--model", "white,ar", "--ar-coefficients", "0.8"]
+    assert main([*command, "--json"]) == 0
+    column = json.loads(capsys.readouterr().out)["files"][0]["columns"]["wx"]
+    assert column["model"]["ar_coefficients"] == [0.8]
+    assert column["ar_coefficient_errors"] == []
+    assert "AR(1) coefficients given" in column["method"]
+    report = tmp_path / "gm.md"
+    assert main([*command, "--markdown", str(report)]) == 0
+    assert "--ar-coefficients 0.8 " in report.read_text(encoding="utf-8")
+    refused = [
+        (["--ar-coefficients", "0.8"], "--ar-coefficients=(0.8,): only with 'ar' in --model"),
+        (["--model", "white,ar", "--ar-coefficients", "1.2"], "ar_coefficients=(1.2,): must be finite and"),
+        (["--model", "white,ar", "--ar-order", "0"], "--ar-order=0: must be an integer >= 1"),
+        (["--model", "white,ar", "--ar-order", "2", "--ar-coefficients", "0.8"], "--ar-order=2: the coeff"),
+    ]
+    for options, message in refused:
+        capsys.readouterr()
+        assert main(["fit", str(path), *options]) == 2
+        assert message in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["fit", str(path), "--model", "white,ar", "--ar-coefficients", "0.5,x"])
+    assert "comma-separated numbers" in capsys.readouterr().err

@@ -10,9 +10,11 @@ import numpy as np
 import pytest
 
 from carousel_theory.fit_diagnostics import (
+    AR_CORRELATION_FRACTION,
     READ_OFF_TOLERANCE,
     WEAK_TERM_LEVEL,
     angle_random_walk_read_off,
+    ar_correlation_notice,
     fit_notices,
     read_off_notice,
     rejection_notice,
@@ -101,3 +103,31 @@ def test_a_weakly_determined_walk_is_reported_with_its_interval_by_test_inversio
     assert notice.kind == "weakly_determined" and notice.message.startswith("rrw_variance")
     assert f"standard error {relative:.0%}" in notice.message and f"{low:.3g} … {high:.3g}" in notice.message
     assert notice in fit_notices(fit)
+
+
+def _gauss_markov_fit(phi: float, **options):
+    """white + AR(1) of coefficient φ, long-run AR variance 10⁻⁴, 2·10⁵ samples at 100 Hz, fitted as such."""
+    truth = NoiseModel(
+        sample_rate=RATE, white_variance=3.6e-5, ar_variance=1e-4 * (1 - phi) ** 2, ar_coefficients=(phi,)
+    )
+    y = sample_noise(truth, 200_000, rng=np.random.default_rng(41))
+    return fit_noise_model(y, RATE, ("white", "ar"), **options)
+
+
+def test_a_long_estimated_gauss_markov_correlation_time_is_reported():
+    # W = 1001 samples at 100 Hz: τ_c above 50 samples (φ above 0.98) is reported, a short one is not,
+    # and a given coefficient (not estimated) never is.
+    slow = _gauss_markov_fit(0.99)
+    (phi,) = slow.model.ar_coefficients
+    assert -1.0 / math.log(phi) > 1001 / AR_CORRELATION_FRACTION  # the estimate is in the reported range
+    notices = [n for n in fit_notices(slow) if n.kind == "ar_correlation_long"]
+    assert len(notices) == 1 and f"φ = {phi:.4g}" in notices[0].message
+    assert "--ar-coefficients" in notices[0].message
+    assert ar_correlation_notice(_gauss_markov_fit(0.8)) is None
+    assert ar_correlation_notice(_gauss_markov_fit(0.99, ar_coefficients=(0.99,))) is None
+
+
+@pytest.mark.parametrize("coefficients", [(1.2,), (float("nan"),), (0.5, 0.6), ()])
+def test_given_ar_coefficients_must_be_finite_and_stationary(coefficients):
+    with pytest.raises(ValueError, match=r"ar_coefficients=\("):
+        _gauss_markov_fit(0.8, ar_coefficients=coefficients)

@@ -47,6 +47,31 @@ def _components(text: str) -> tuple[str, ...]:
     return names
 
 
+def _coefficients(text: str) -> tuple[float, ...]:
+    try:
+        values = tuple(float(part) for part in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be comma-separated numbers φ1,φ2,...") from None
+    return values
+
+
+def _add_ar_options(parser: argparse.ArgumentParser) -> None:
+    """--ar-coefficients and --ar-order (the AR term's coefficients given, or the order they are
+    estimated with)."""
+    parser.add_argument(
+        "--ar-coefficients",
+        type=_coefficients,
+        metavar="PHI[,PHI...]",
+        help="give the AR (Gauss–Markov) coefficients instead of estimating them from the record, e.g. "
+        "exp(−1/(f_s τ_c)) for a known correlation time τ_c (only with 'ar' in --model)",
+    )
+    parser.add_argument(
+        "--ar-order",
+        type=int,
+        help="largest AR order the coefficients are estimated with (default 4; only with 'ar' in --model)",
+    )
+
+
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "fit",
@@ -78,6 +103,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--flicker-d", type=float, help="fix the 1/f order d (default: fitted when flicker is used)"
     )
+    _add_ar_options(parser)
     parser.add_argument(
         "--tau-min",
         type=float,
@@ -120,7 +146,9 @@ def _fit_file(path: Path, args: argparse.Namespace) -> tuple[Any, dict[str, FitR
     if args.model is None:
         fits, notes = select_default_fit(recording, **common)
         return recording, fits, notes
-    return recording, fit_recording(recording, args.model, flicker_d=args.flicker_d, **common), []
+    ar = {"ar_coefficients": args.ar_coefficients} if args.ar_coefficients is not None else {}
+    ar |= {"ar_order": args.ar_order} if args.ar_order is not None else {}
+    return recording, fit_recording(recording, args.model, flicker_d=args.flicker_d, **common, **ar), []
 
 
 def _measured_bias_instability(fit: FitResult) -> tuple[float, float, float, float]:
@@ -168,6 +196,12 @@ def _report_header(files: list[tuple[Any, dict[str, FitResult]]], args: argparse
         + (f" --tau-min {args.tau_min:g}" if args.tau_min is not None else "")
         + (f" --tau-max {args.tau_max:g}" if args.tau_max is not None else "")
         + (f" --flicker-d {args.flicker_d:g}" if args.flicker_d is not None else "")
+        + (
+            f" --ar-coefficients {','.join(f'{c:g}' for c in args.ar_coefficients)}"
+            if args.ar_coefficients is not None
+            else ""
+        )
+        + (f" --ar-order {args.ar_order}" if args.ar_order is not None else "")
         + f" --estimator {args.estimator} --iterations {args.iterations}"
         + (" --all-iterations" if args.all_iterations else "")
         + f" --markdown {args.markdown}`",
@@ -355,10 +389,17 @@ def _check_fit_options(args: argparse.Namespace) -> None:
             raise ValueError(f"--{name.replace('_', '-')}={value!r}: must be a positive number of seconds")
     if args.tau_min is not None and args.tau_max is not None and args.tau_min >= args.tau_max:
         raise ValueError(f"--tau-min={args.tau_min!r}: must be below --tau-max={args.tau_max!r}")
+    given = "the default model" if args.model is None else repr(args.model)
     if args.flicker_d is not None and "flicker" not in (args.model or ()):
+        raise ValueError(f"--flicker-d={args.flicker_d!r}: only with 'flicker' in --model (got {given})")
+    for option, value in (("--ar-coefficients", args.ar_coefficients), ("--ar-order", args.ar_order)):
+        if value is not None and "ar" not in (args.model or ()):
+            raise ValueError(f"{option}={value!r}: only with 'ar' in --model (got {given})")
+    if args.ar_order is not None and args.ar_order < 1:
+        raise ValueError(f"--ar-order={args.ar_order!r}: must be an integer >= 1")
+    if args.ar_coefficients is not None and args.ar_order is not None:
         raise ValueError(
-            f"--flicker-d={args.flicker_d!r}: only with 'flicker' in --model (got "
-            f"{'the default model' if args.model is None else repr(args.model)})"
+            f"--ar-order={args.ar_order!r}: the coefficients are given (--ar-coefficients), not estimated"
         )
 
 
