@@ -54,7 +54,7 @@ from carousel_theory.noise_model import AR_TRUNCATION, ar_autocovariance
 
 __all__ = ["ArModes", "ar_modes", "fourth_sum_of_modes", "mode_derivative_bound", "underflow_distance"]
 
-#: The modes are kept when A_i reproduce γ(0 … 2p + 8) to this fraction of Σ|A_i| and Σ|A_i| ≤
+#: The modes are kept when A_i reproduce γ(0 … 2p + 7) to this fraction of Σ|A_i| and Σ|A_i| ≤
 #: ``_LARGEST_CANCELLATION`` · γ(0).
 _RECONSTRUCTION = 1e-12
 _LARGEST_CANCELLATION = 1e4

@@ -82,7 +82,7 @@ from carousel_theory.autoregression import (
 )
 from carousel_theory.formulas import formula
 from carousel_theory.increment_sums import squared_rising_factorial_sum
-from carousel_theory.noise_model import NoiseModel, stationary_ar, term_allan_variance
+from carousel_theory.noise_model import NoiseModel, check_ar_coefficients, term_allan_variance
 from carousel_theory.progress import progress
 from carousel_theory.signal_checks import check_noise_signal, check_recording_signals
 from carousel_theory.tau_covariance import allan_estimate_covariance
@@ -432,22 +432,12 @@ class FitOptions:
         if self.tolerance is not None:
             object.__setattr__(self, "tolerance", float(check_positive_real("tolerance", self.tolerance)))
         check_tau_range(self.tau_range)  # an open end (None) is 0 or ∞
+        if self.ar_coefficients is not None and not len(self.ar_coefficients):
+            raise ValueError(
+                "ar_coefficients=(): must hold at least one coefficient (AR(0) is white noise: use 'white')"
+            )
         if self.ar_coefficients is not None:
-            _check_ar_coefficients(self.ar_coefficients)
-
-
-def _check_ar_coefficients(coefficients: tuple[float, ...]) -> None:
-    """Given AR coefficients: at least one, finite, and stationary."""
-    if not len(coefficients):
-        raise ValueError(
-            "ar_coefficients=(): must hold at least one coefficient (AR(0) is white noise: use 'white')"
-        )
-    values = tuple(float(c) for c in coefficients)
-    if not all(math.isfinite(c) for c in values) or not stationary_ar(values):
-        raise ValueError(
-            f"ar_coefficients={coefficients!r}: must be finite and stationary (every root of "
-            "z^p − φ_1 z^(p−1) − … − φ_p inside the unit circle; for AR(1), |φ| < 1)"
-        )
+            check_ar_coefficients(tuple(self.ar_coefficients))
 
 
 # --- the GLS ---------------------------------------------------------------------------------------

@@ -186,10 +186,10 @@ class LagModel:
             reach = max(3, ar_increment_reach(tuple(model.ar_coefficients))) if "ar" in terms else 3
         reach = -(-reach // REACH_STEP) * REACH_STEP if reach > 3 else reach
         gamma = np.zeros(reach + 1)
-        for name in ("white", "rrw", "quantization", "ar"):
-            if name in terms and not (name == "ar" and modes is not None):
-                taps = increment_autocovariance(name, reach + 1, ar_coefficients=model.ar_coefficients)
-                gamma += terms[name] * taps
+        finite = ("white", "rrw", "quantization") + (("ar",) if modes is None else ())
+        for name in (name for name in finite if name in terms):
+            taps = increment_autocovariance(name, reach + 1, ar_coefficients=model.ar_coefficients)
+            gamma += terms[name] * taps
         if modes is not None:  # the AR term: white noise of its long-run variance, and its modes
             gamma += terms["ar"] * modes.long_run_variance * increment_autocovariance("white", reach + 1)
         total = terms.get("rrw", 0.0)  # Σ γ_z: 1 for the rate random walk, exactly 0 for the others

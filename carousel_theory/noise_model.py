@@ -63,6 +63,7 @@ __all__ = [
     "ar_autocovariance",
     "ar_decay_lags",
     "ar_increment_reach",
+    "check_ar_coefficients",
     "increment_autocovariance",
     "spectral_density",
     "term_allan_variance",
@@ -135,16 +136,7 @@ class NoiseModel:
         for name in ("white_variance", "rrw_variance", "flicker_variance", "quantization", "ar_variance"):
             check_positive_real(name, getattr(self, name), allow_zero=True)
         check_fractional_order("flicker_d", self.flicker_d)
-        coefficients = self.ar_coefficients
-        if not isinstance(coefficients, tuple):
-            raise TypeError(f"ar_coefficients={coefficients!r}: must be a tuple of floats")
-        for j, value in enumerate(coefficients):
-            check_real(f"ar_coefficients[{j}]", value)
-        if not stationary_ar(coefficients):
-            raise ValueError(
-                f"ar_coefficients={coefficients!r}: must describe a stationary AR process (every root of "
-                "1 − Σ φ_j z^j outside the unit circle)"
-            )
+        check_ar_coefficients(self.ar_coefficients)
 
     # --- the terms ----------------------------------------------------------------------------------
     def terms(self) -> dict[str, float]:
@@ -270,6 +262,19 @@ _FIELD = {
     "quantization": "quantization",
     "ar": "ar_variance",
 }
+
+
+def check_ar_coefficients(coefficients: Any) -> None:
+    """Refuse AR coefficients that are not a tuple of finite reals describing a stationary process."""
+    if not isinstance(coefficients, tuple):
+        raise TypeError(f"ar_coefficients={coefficients!r}: must be a tuple of floats")
+    for j, value in enumerate(coefficients):
+        check_real(f"ar_coefficients[{j}]", value)
+    if not stationary_ar(coefficients):
+        raise ValueError(
+            f"ar_coefficients={coefficients!r}: must describe a stationary AR process (every root of "
+            "1 − Σ φ_j z^j outside the unit circle)"
+        )
 
 
 def stationary_ar(coefficients: tuple[float, ...]) -> bool:

@@ -20,7 +20,7 @@ import pytest
 
 from carousel_theory.ar_modes import ar_modes, fourth_sum_of_modes, mode_derivative_bound
 from carousel_theory.increment_sums import finite_fourth_sum
-from carousel_theory.lag_quadrature import LagModel, PairBatch
+from carousel_theory.lag_quadrature import REACH_STEP, LagModel, PairBatch
 from carousel_theory.noise_model import NoiseModel, ar_increment_reach, increment_autocovariance
 
 COEFFICIENTS = [
@@ -90,7 +90,10 @@ def test_repeated_or_zero_roots_keep_the_truncated_autocovariance(coefficients):
     model = NoiseModel(sample_rate=1.0, white_variance=1.0, ar_variance=0.5, ar_coefficients=coefficients)
     lag_model = LagModel.of(model)
     assert lag_model.modes is None
-    assert lag_model.reach >= min(ar_increment_reach(coefficients), 3)
+    # The truncated γ_z's reach, rounded up to a multiple of REACH_STEP lags when it exceeds 3.
+    reach = max(3, ar_increment_reach(coefficients))
+    assert lag_model.reach == (reach if reach == 3 else -(-reach // REACH_STEP) * REACH_STEP)
+    assert lag_model.reach >= ar_increment_reach(coefficients)
 
 
 def test_rough_modes_keep_their_reach_and_smooth_ones_none():

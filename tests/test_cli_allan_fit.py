@@ -265,7 +265,7 @@ def test_fit_takes_given_ar_coefficients_and_refuses_them_where_they_mean_nothin
     assert "--ar-coefficients 0.8 " in report.read_text(encoding="utf-8")
     refused = [
         (["--ar-coefficients", "0.8"], "--ar-coefficients=(0.8,): only with 'ar' in --model"),
-        (["--model", "white,ar", "--ar-coefficients", "1.2"], "ar_coefficients=(1.2,): must be finite and"),
+        (["--model", "white,ar", "--ar-coefficients", "1.2"], "ar_coefficients=(1.2,): must describe a"),
         (["--model", "white,ar", "--ar-order", "0"], "--ar-order=0: must be an integer >= 1"),
         (["--model", "white,ar", "--ar-order", "2", "--ar-coefficients", "0.8"], "--ar-order=2: the coeff"),
     ]
