@@ -22,13 +22,17 @@ evaluations they take (each row shows them). With ``--breakdown`` each fit is ru
 time is split into the τ-covariances (the pairs' structure, the values at exact lags and Gauss nodes, the
 sums and the rest) and everything else.
 
+The fit weights its GLS with the lag quadrature's :data:`~carousel_theory.lag_plan.WEIGHTS_RULE`
+(:mod:`carousel_theory.lag_quadrature`, module text: Rules).
+
 Then, at ``--dense-size`` samples, the covariance of the Allan variance estimates across octave τ from
 :func:`carousel_theory.tau_covariance.allan_estimate_covariance` is compared with the dense O(n)-per-pair
 reference :func:`carousel_theory.allan.allan_covariance` for the fitted white + RRW model (largest
 relative difference; the tests hold both to 1e-11 at small sizes and to exact integers), and the
 white + RRW + 1/f + AR covariance (exact lags near the breakpoints, discrete Gauss blocks with a proved
 error bound elsewhere, :mod:`carousel_theory.lag_quadrature`) is compared with the same cross-covariance
-summed over every lag of the record (the tests hold it to dense Toeplitz algebra and to 30-digit sums).
+summed over every lag of the record (the tests hold it to dense Toeplitz algebra and to 30-digit sums),
+by the proved rule and by the fit's.
 """
 
 from __future__ import annotations
@@ -47,6 +51,7 @@ import numpy as np
 from carousel_theory import fitting, lag_quadrature, tau_covariance
 from carousel_theory.allan import allan_covariance
 from carousel_theory.fitting import fit_noise_model
+from carousel_theory.lag_plan import PROVED_RULE, WEIGHTS_RULE
 from carousel_theory.lag_quadrature import LagModel, _make_pair, _values
 from carousel_theory.noise_model import NoiseModel
 from carousel_theory.simulate import sample_noise
@@ -111,17 +116,22 @@ def _every_lag_check(size: int) -> None:
     threshold = tau_covariance.EVERY_LAG_LENGTH
     tau_covariance.EVERY_LAG_LENGTH = 0  # the quadrature even where a short record would sum every lag
     try:
-        fast_time, fast = _timed(lambda: allan_estimate_covariance(TRUTH, sizes, size))
+        fast = {
+            rule: _timed(lambda rule=rule: allan_estimate_covariance(TRUTH, sizes, size, rule=rule))
+            for rule in (PROVED_RULE, WEIGHTS_RULE)
+        }
     finally:
         tau_covariance.EVERY_LAG_LENGTH = threshold
     pair_time, reference = _timed(every_lag)
-    difference = float(np.max(np.abs(fast.covariance - reference) / np.abs(reference)))
-    bound = float(np.max(fast.truncation_bound / np.abs(reference)))
-    print(
-        f"white + RRW + 1/f + AR covariance across {len(sizes)} octave τ at n = {size}: Gauss blocks "
-        f"{fast_time:.3f} s, every lag {pair_time:.3f} s, largest relative difference {difference:.2e} "
-        f"(proved bound {bound:.2e} + rounding)"
-    )
+    for rule, name in ((PROVED_RULE, "proved rule"), (WEIGHTS_RULE, "fit's weights rule")):
+        fast_time, result = fast[rule]
+        difference = float(np.max(np.abs(result.covariance - reference) / np.abs(reference)))
+        bound = float(np.max(result.truncation_bound / np.abs(reference)))
+        print(
+            f"white + RRW + 1/f + AR covariance across {len(sizes)} octave τ at n = {size}, {name}: Gauss "
+            f"blocks {fast_time:.3f} s, every lag {pair_time:.3f} s, largest relative difference "
+            f"{difference:.2e} (proved bound {bound:.2e} + rounding)"
+        )
 
 
 @contextlib.contextmanager
@@ -149,6 +159,7 @@ def _breakdown(y: np.ndarray, components: tuple[str, ...]) -> None:
     τ-covariances, and within them the pairs' structure (plans, partitions, gathers; once per record),
     the terms' values at the exact lags and Gauss nodes (each covariance), and the sums with the rest."""
     lag_quadrature.pair_batch.cache_clear()
+    lag_quadrature._planned.cache_clear()
     spent: dict[str, float] = {}
     with contextlib.ExitStack() as stack:
         stack.enter_context(_clocked(fitting, "allan_estimate_covariance", spent))

@@ -57,6 +57,7 @@ from carousel_theory._validation import (
 )
 from carousel_theory.binary_scaling import binary_exponent, scaled_by_power_of_two
 from carousel_theory.data import RESERVED_COLUMN_NAMES, TIME_COLUMN_NAMES, Recording, recording_from_arrays
+from carousel_theory.lag_plan import WEIGHTS_RULE
 from carousel_theory.noise_model import (
     QUANTIZATION_ALLAN_VARIANCE,
     RRW_ALLAN_VARIANCE,
@@ -723,11 +724,13 @@ def _degrees_of_freedom(
     noise: Any, sizes: np.ndarray, terms: np.ndarray, length: int, sample_rate: float, estimator: str
 ) -> np.ndarray:
     """ν at each m: for a NoiseModel 2σ_A⁴/Var σ̂² from the exact τ-covariance engine
-    (:mod:`carousel_theory.tau_covariance`), otherwise by :func:`equivalent_degrees_of_freedom`."""
+    (:mod:`carousel_theory.tau_covariance`; 1/f and AR by the lag quadrature's
+    :data:`~carousel_theory.lag_plan.WEIGHTS_RULE`, whose values agree with the proved rule's far beyond
+    the digits a χ² quantile uses), otherwise by :func:`equivalent_degrees_of_freedom`."""
     if isinstance(noise, NoiseModel):
         if not noise.terms():
             raise ValueError(f"noise={noise!r}: the model has no noise component")
-        variance = allan_estimate_variance(noise, sizes, length, estimator=estimator)
+        variance = allan_estimate_variance(noise, sizes, length, estimator=estimator, rule=WEIGHTS_RULE)
         return np.asarray(2.0 * noise.allan_variance(sizes) ** 2 / variance, dtype=np.float64)
     return np.array(
         [

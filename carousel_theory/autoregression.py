@@ -97,7 +97,8 @@ def high_passed_autocovariance(x: Any, sample_rate: float, lags: int) -> tuple[n
     """(γ̂(0 … lags) of ``x`` less its centred moving average of max(1001, 10 s) samples, n); lags the
     record does not reach are 0, and all are 0 for a record constant to rounding."""
     samples = check_finite_array("x", x, min_length=3)
-    fast = samples - uniform_filter1d(samples, high_pass_window(sample_rate), mode="nearest")
+    fast = uniform_filter1d(samples, high_pass_window(sample_rate), mode="nearest")
+    np.subtract(samples, fast, out=fast)  # the record less its moving average, in the average's array
     n = len(fast)
     reached = range(min(lags, n - 1) + 1)
     autocovariance = np.array([np.einsum("i,i->", fast[: n - k], fast[k:]) for k in reached]) / n

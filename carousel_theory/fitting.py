@@ -8,7 +8,8 @@ coefficients the model Allan variance is linear in the driving variances,
 stationary curves of :mod:`carousel_theory.noise_model`. The estimate minimises
 (â − Aθ)ᵀ C⁻¹ (â − Aθ) under θ ≥ 0, where C is the covariance of the estimates across τ computed from the
 current model by :mod:`carousel_theory.tau_covariance` (exact and independent of the record length for
-white, RRW and quantization; finite lag sums for 1/f and AR), iterated from a diagonal start until a
+white, RRW and quantization; finite lag sums for 1/f and AR, by the lag quadrature's
+:data:`~carousel_theory.lag_plan.WEIGHTS_RULE`), iterated from a diagonal start until a
 step moves no parameter by more than ``tolerance`` (0.05) of its standard error, at most ``iterations``
 times (the closed loop, whose false-alarm rates were measured that way, always takes three). With a
 model-based C the weights do not depend on the noise in each point, which avoids the downward bias of
@@ -82,6 +83,7 @@ from carousel_theory.autoregression import (
 )
 from carousel_theory.formulas import formula
 from carousel_theory.increment_sums import squared_rising_factorial_sum
+from carousel_theory.lag_plan import WEIGHTS_RULE
 from carousel_theory.noise_model import NoiseModel, check_ar_coefficients, term_allan_variance
 from carousel_theory.progress import progress
 from carousel_theory.signal_checks import check_noise_signal, check_recording_signals
@@ -655,7 +657,7 @@ def _solve(
             problem.sample_rate, 0.0, dict(zip(problem.components, theta, strict=True)), d, problem.ar
         )
         covariance = allan_estimate_covariance(
-            model, problem.sizes, problem.length, estimator=problem.estimator, bound=False
+            model, problem.sizes, problem.length, estimator=problem.estimator, bound=False, rule=WEIGHTS_RULE
         ).covariance
     return _Solution(theta, d, covariance, chi_square, iteration, settled)
 
@@ -685,7 +687,9 @@ def _white_edf(problem: _Problem) -> np.ndarray:
     from carousel_theory.tau_covariance import allan_estimate_variance
 
     unit = NoiseModel(sample_rate=problem.sample_rate, white_variance=1.0)
-    variance = allan_estimate_variance(unit, problem.sizes, problem.length, estimator=problem.estimator)
+    variance = allan_estimate_variance(
+        unit, problem.sizes, problem.length, estimator=problem.estimator, rule=WEIGHTS_RULE
+    )
     return 2.0 * unit.allan_variance(problem.sizes) ** 2 / variance
 
 
@@ -873,7 +877,7 @@ def _covariance_in_candidate(
             problem.sample_rate, 0.0, dict(zip(problem.components, values, strict=True)), d, problem.ar
         )
         return allan_estimate_covariance(
-            model, problem.sizes, problem.length, estimator=problem.estimator, bound=False
+            model, problem.sizes, problem.length, estimator=problem.estimator, bound=False, rule=WEIGHTS_RULE
         ).covariance
 
     rest, alone = theta.copy(), np.zeros_like(theta)

@@ -170,10 +170,12 @@ def _log_gamma_slope(a: np.ndarray, step: float) -> np.ndarray:
     small = a < _STIRLING_FROM
     if np.any(small):
         total = np.zeros(int(np.count_nonzero(small)))
+        # ψ^{(r−1)}(a), r = 1 … R, one row per r, in one call (the same values as one call per order)
+        derivatives = special.polygamma(np.arange(_SERIES_TERMS)[:, None], a[small])
         factorial, power = 1.0, 1.0
         for r in range(1, _SERIES_TERMS + 1):
             factorial *= r
-            total += special.polygamma(r - 1, a[small]) * (power / factorial)
+            total += derivatives[r - 1] * (power / factorial)
             power *= step
         result[small] = total
     large = a[~small]

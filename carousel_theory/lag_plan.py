@@ -5,13 +5,18 @@ Setting: :mod:`carousel_theory.lag_quadrature` sums Σ_δ N_ij(δ) c_ij(δ)² ov
 b_q = q + 2 of the pair's ramps (:func:`ramp_positions`), and N_ij is linear between its kinks 0 and
 K_j − K_i. The plan of a pair:
 
-    Exact: every integer lag within ``zone`` = max(EXACT_REACH, reach + 8, GAUSS_POINTS + 2) of a
-    breakpoint, every segment between cuts that holds a breakpoint or is shorter than 2 GAUSS_POINTS,
-    and every block of at most 2 GAUSS_POINTS lags.
+    Exact: every integer lag within ``zone`` = max(exact_reach, reach + 8, points + 2) of a breakpoint,
+    every segment between cuts that holds a breakpoint or is shorter than 2 points, and every block of at
+    most 2 points lags.
     Blocks: the rest of each segment between consecutive cuts (the kinks, the record's ends and the
     zones' edges) is covered by blocks grown away from the breakpoints on either side, meeting half-way:
-    each block is the longest of the lengths ⌊2^{k/4}⌋ that is at most BLOCK_RATIO times its distance
+    each block is the longest of the lengths ⌊2^{k/4}⌋ that is at most block_ratio times its distance
     to the breakpoint it grows from and at most what remains of its half.
+
+``points``, ``block_ratio`` and ``exact_reach`` are a :class:`QuadratureRule`. The lag quadrature's
+error bound holds for any rule; :data:`PROVED_RULE` keeps it far below the covariance for the models
+of a gyro fit, :data:`WEIGHTS_RULE` takes about half the nodes and lags where only the values count
+(a fit's weights; :mod:`carousel_theory.lag_quadrature`, module text: Rules).
 
 :func:`plan_pairs` plans all the pairs of one covariance together: the segments of every pair are rows
 of one array, and the blocks of every half-segment grow in one loop over the growth steps (about thirty
@@ -30,18 +35,34 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["BLOCK_RATIO", "EXACT_REACH", "GAUSS_POINTS", "LagPlan", "plan_pairs", "ramp_positions"]
+__all__ = [
+    "PROVED_RULE",
+    "WEIGHTS_RULE",
+    "LagPlan",
+    "QuadratureRule",
+    "plan_pairs",
+    "ramp_positions",
+]
 
-#: Nodes of the discrete Gauss rule on each block.
-GAUSS_POINTS = 12
-#: A block is at most this fraction of its distance to the nearest breakpoint.
-BLOCK_RATIO = 0.5
-#: Lags within this distance of a breakpoint (or the finite terms' reach, when longer) are summed one by
-#: one.
-EXACT_REACH = 32
 
-#: Block lengths: ⌊2^{k/4}⌋, k = 0, 1, … (quarter octaves, so that a block is close to BLOCK_RATIO × its
-#: distance while the Gauss rules stay few and cached).
+@dataclass(frozen=True)
+class QuadratureRule:
+    """How a pair's lag sum is split: ``points`` nodes of the discrete Gauss rule on each block, each block
+    at most ``block_ratio`` times its distance to the nearest breakpoint, and the lags within
+    ``exact_reach`` of a breakpoint (or the finite terms' reach, when longer) summed one by one."""
+
+    points: int
+    block_ratio: float
+    exact_reach: int
+
+
+#: The reported covariance's rule: its proved bound is below 10⁻¹⁴ of the covariance for 1/f of
+#: d ≤ 0.5 beside a Gauss–Markov term, and about 10⁻¹⁰ at d = 0.95 (below the rounding there).
+PROVED_RULE = QuadratureRule(points=12, block_ratio=0.5, exact_reach=32)
+#: A fit's weights: a third of the Gauss nodes and half the exact lags of :data:`PROVED_RULE`, the same
+#: values to 10⁻¹¹ of the covariance for d ≤ 0.6 (measured: lag_quadrature's module text, Rules).
+WEIGHTS_RULE = QuadratureRule(points=8, block_ratio=1.0, exact_reach=16)
+
 BLOCK_LENGTHS = np.array(sorted({math.floor(2.0 ** (k / 4.0)) for k in range(4 * 62)}), dtype=np.int64)
 _RAMPS = 9  # at most nine ramps per pair
 
@@ -133,10 +154,10 @@ def _halves(segments: _Segments, grown: np.ndarray) -> tuple[np.ndarray, ...]:
 
 
 def _grow(
-    start: np.ndarray, span: np.ndarray, distance: np.ndarray, direction: np.ndarray
+    start: np.ndarray, span: np.ndarray, distance: np.ndarray, direction: np.ndarray, block_ratio: float
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(half, step, first lag, length) of the blocks covering each half: every active half takes, per
-    step, the longest of :data:`BLOCK_LENGTHS` ≤ min(BLOCK_RATIO × its distance, what remains), at
+    step, the longest of :data:`BLOCK_LENGTHS` ≤ min(``block_ratio`` × its distance, what remains), at
     least 1."""
     offset, remaining = np.zeros_like(span), span.copy()
     active = np.flatnonzero(remaining > 0)
@@ -144,7 +165,7 @@ def _grow(
     step = 0
     while len(active):
         reached = distance[active] + offset[active]
-        ratio = np.floor(BLOCK_RATIO * reached).astype(np.int64)
+        ratio = np.floor(block_ratio * reached).astype(np.int64)
         allowed = np.maximum(1, np.minimum(ratio, remaining[active]))
         length = BLOCK_LENGTHS[np.searchsorted(BLOCK_LENGTHS, allowed, side="right") - 1]
         up = direction[active] > 0
@@ -163,19 +184,23 @@ def _grow(
     return tuple(np.concatenate(parts) for parts in (halves, steps, firsts, lengths))  # type: ignore[return-value]
 
 
-def plan_pairs(pairs: Sequence[tuple[int, int, int, int]], reach: int) -> LagPlan:
+def plan_pairs(
+    pairs: Sequence[tuple[int, int, int, int]], reach: int, rule: QuadratureRule = PROVED_RULE
+) -> LagPlan:
     """The :class:`LagPlan` of the (m_i, m_j, K_i, K_j) ``pairs`` for finite terms reaching ``reach``
-    lags (module text): each pair's plan, as if planned alone, concatenated in the pairs' order."""
+    lags by ``rule`` (module text): each pair's plan, as if planned alone, concatenated in the pairs'
+    order."""
     sizes = np.array(pairs, dtype=np.int64).reshape(-1, 4)
-    zone = max(EXACT_REACH, reach + 8, GAUSS_POINTS + 2)
+    points = rule.points
+    zone = max(rule.exact_reach, reach + 8, points + 2)
     segments = _segments(sizes, _breakpoints(pairs), zone)
     near = np.minimum(segments.first - segments.left, segments.right - segments.last)
-    exact = segments.inside | (near <= zone) | (segments.last - segments.first < 2 * GAUSS_POINTS)
+    exact = segments.inside | (near <= zone) | (segments.last - segments.first < 2 * points)
     segment, side, start, span, distance, direction = _halves(segments, ~exact)
-    half, step, first, length = _grow(start, span, distance, direction)
+    half, step, first, length = _grow(start, span, distance, direction, rule.block_ratio)
     order = np.lexsort((step, side[half], segment[half]))
     first, length, owner = first[order], length[order], segments.owner[segment[half[order]]]
-    small = length <= 2 * GAUSS_POINTS
+    small = length <= 2 * points
     ranges_first = np.concatenate((segments.first[exact], first[small]))
     ranges_last = np.concatenate((segments.last[exact], first[small] + length[small] - 1))
     ranges_owner = np.concatenate((segments.owner[exact], owner[small]))

@@ -62,7 +62,13 @@ import sympy as sp
 
 from carousel_theory import symbols
 from carousel_theory.increment_sums import flicker_increment_difference
-from carousel_theory.lag_quadrature import LagModel, counted_square_sum, counted_square_sums, ramp_positions
+from carousel_theory.lag_quadrature import (
+    PROVED_RULE,
+    LagModel,
+    QuadratureRule,
+    counted_square_sums,
+    ramp_positions,
+)
 from carousel_theory.noise_model import (
     NoiseModel,
     ar_increment_reach,
@@ -379,16 +385,15 @@ def _every_lag_sum(memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int) 
 
 def _pair_sum(
     model: NoiseModel,
-    engine: LagModel | _LongMemory | None,
+    engine: _LongMemory | None,
     m_i: int,
     m_j: int,
     K_i: int,
     K_j: int,
     estimator: str,
 ) -> tuple[float, float]:
-    """(Σ N c², bound on its error) of one pair by the engine chosen for the model and record."""
-    if isinstance(engine, LagModel):
-        return counted_square_sum(engine, m_i, m_j, K_i, K_j)
+    """(Σ N c², bound on its error) of one pair by the exact integers or the lag sums (the lag quadrature
+    takes its pairs all at once: :func:`_pair_sums`)."""
     if engine is None:
         return _finite_sum(model, m_i, m_j, K_i, K_j), 0.0
     if estimator == "overlapping":
@@ -416,13 +421,14 @@ def _pair_sums(
     estimator: str,
     pairs: list,
     bound: bool = True,
+    rule: QuadratureRule = PROVED_RULE,
 ) -> list[tuple[float, float]]:
-    """(Σ N c², error bound) of each (i, j) in ``pairs``; the lag quadrature takes them all at once (its
-    bound NaN without ``bound``)."""
+    """(Σ N c², error bound) of each (i, j) in ``pairs``; the lag quadrature takes them all at once, by
+    ``rule`` (its bound NaN without ``bound``)."""
     arguments = [(int(sizes[i]), int(sizes[j]), int(terms[i]), int(terms[j])) for i, j in pairs]
     engine = _engine(model, arguments, length, estimator)
     if isinstance(engine, LagModel):
-        return counted_square_sums(engine, arguments, bounds=bound)
+        return counted_square_sums(engine, arguments, bounds=bound, rule=rule)
     return [_pair_sum(model, engine, *pair, estimator) for pair in arguments]
 
 
@@ -444,16 +450,22 @@ def _assembled(
 
 
 def _covariance_matrix(
-    model: NoiseModel, sizes: np.ndarray, length: int, estimator: str, bound: bool
+    model: NoiseModel, sizes: np.ndarray, length: int, estimator: str, bound: bool, rule: QuadratureRule
 ) -> tuple[np.ndarray, np.ndarray]:
     """(Σ N c² / scale, error bound / scale) for every pair of non-decreasing ``sizes``."""
     terms = _terms_count(sizes, length, estimator)
     pairs = _upper_pairs(len(sizes))
-    return _assembled(sizes, terms, _pair_sums(model, sizes, terms, length, estimator, pairs, bound))
+    return _assembled(sizes, terms, _pair_sums(model, sizes, terms, length, estimator, pairs, bound, rule))
 
 
 def allan_estimate_covariance(
-    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping", bound: bool = True
+    model: NoiseModel,
+    tau_samples: Any,
+    length: int,
+    *,
+    estimator: str = "overlapping",
+    bound: bool = True,
+    rule: QuadratureRule = PROVED_RULE,
 ) -> TauCovariance:
     """Covariance of the Allan variance estimates at m = ``tau_samples`` in a record of ``length`` samples.
 
@@ -462,7 +474,10 @@ def allan_estimate_covariance(
     and by a finite lag sum with the 1/f tail bounded for the non-overlapping estimator (module text).
     For the non-overlapping estimator every m must divide the larger ones. ``bound=False`` skips the lag
     quadrature's error bound (the same covariance; its ``truncation_bound`` entries are then NaN), for
-    callers that use the covariance alone (the fit's weights).
+    callers that use the covariance alone. ``rule`` is the lag quadrature's
+    (:class:`~carousel_theory.lag_plan.QuadratureRule`): :data:`~carousel_theory.lag_plan.WEIGHTS_RULE`
+    takes about half the time of the default where the values alone count (a fit's weights; the two
+    rules' values compared: :mod:`carousel_theory.lag_quadrature`, module text: Rules).
     """
     sizes = np.asarray(tau_samples, dtype=np.int64)
     if estimator not in ("overlapping", "non-overlapping"):
@@ -475,7 +490,7 @@ def allan_estimate_covariance(
             "larger ones (use octave τ)"
         )
     order = np.argsort(sizes, kind="stable")  # summed in increasing τ (the window of A_j covers m_i ≤ m_j)
-    covariance, bounds = _covariance_matrix(model, sizes[order], int(length), estimator, bound)
+    covariance, bounds = _covariance_matrix(model, sizes[order], int(length), estimator, bound, rule)
     return _in_given_order(model, sizes, covariance, bounds, np.argsort(order), estimator)
 
 
@@ -495,14 +510,20 @@ def _in_given_order(
 
 
 def allan_estimate_variance(
-    model: NoiseModel, tau_samples: Any, length: int, *, estimator: str = "overlapping"
+    model: NoiseModel,
+    tau_samples: Any,
+    length: int,
+    *,
+    estimator: str = "overlapping",
+    rule: QuadratureRule = PROVED_RULE,
 ) -> np.ndarray:
-    """Var σ̂²(m) at each m (the diagonal of :func:`allan_estimate_covariance`, without the other pairs)."""
+    """Var σ̂²(m) at each m (the diagonal of :func:`allan_estimate_covariance`, without the other pairs;
+    ``rule`` as there)."""
     sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
     terms = _terms_count(sizes, int(length), estimator)
     order = np.argsort(sizes, kind="stable")
     diagonal = [(k, k) for k in range(len(sizes))]
-    sums = _pair_sums(model, sizes[order], terms[order], int(length), estimator, diagonal, bound=False)
+    sums = _pair_sums(model, sizes[order], terms[order], int(length), estimator, diagonal, False, rule)
     result = np.empty(len(sizes))
     for i, (total, _) in zip(order.tolist(), sums, strict=True):
         m, K = int(sizes[i]), int(terms[i])
