@@ -18,6 +18,10 @@ components, so every fitted model is the true one. Counted per (model, size):
   default χ²-based interval (from the same standard error, over the same records), and the interval by
   test inversion (``method="inverted"``, :func:`carousel_theory.fitting.inverted_interval`; over every
   record, those at 0 included, since its lower end may be 0);
+- for the 1/f order d, how often its interval (both columns: the d whose GLS χ² exceeds the fit's by at
+  most χ²₁(0.95), :func:`carousel_theory.fitting.order_interval`) holds the truth, over the records
+  where the 1/f term is not at 0 and over every record (at 0 the χ² does not depend on d and the
+  interval is the whole range searched);
 - the AR coefficient the same way, with ``FitResult.ar_coefficient_errors``.
 
 Reading the table. A plug-in standard error comes from the covariance across τ evaluated at the
@@ -25,6 +29,8 @@ estimate, so for a weakly determined variance (a rate random walk or 1/f term kn
 it shrinks with the estimate: records that underestimate the term report a small error, the ±1.96 s
 interval under-covers and z spreads wider than 1 although the estimate itself is unbiased. The
 inverted interval evaluates the error at each candidate value instead, and so does not share that flaw.
+For d the error comes from the χ²'s curvature at d̂, and the χ² is far from a parabola in d where the 1/f
+term trades off against the white and RRW terms; its χ²-difference interval follows the χ² itself.
 
 Prints one Markdown table; ``--write PATH`` also writes it with this text's method as a document.
 """
@@ -86,17 +92,18 @@ def _record(tally: Tally, fit: FitResult, truth: NoiseModel) -> None:
     # The models here have no quantization, the one parameter whose name is not a NoiseModel attribute.
     true_values = {name: float(getattr(truth, name)) for name in fit.parameters}
     for name in fit.parameters:
-        if name != "flicker_d":
-            low, high = fit.interval(name, method="inverted")
-            tally.inverted_covers.setdefault(name, []).append(bool(low <= true_values[name] <= high))
-        if name in fit.at_bound or fit.standard_errors.get(name, 0.0) <= 0.0:
+        # d's χ²-difference interval is its test inversion too, and is defined with the 1/f term at 0
+        low, high = fit.interval(name, method="inverted")
+        inverted = bool(low <= true_values[name] <= high)
+        tally.inverted_covers.setdefault(name, []).append(inverted)
+        zero = "flicker_variance" if name == "flicker_d" else name
+        if zero in fit.at_bound or fit.standard_errors.get(name, 0.0) <= 0.0:
             tally.at_zero[name] = tally.at_zero.get(name, 0) + 1
             continue
         z = (fit.value(name) - true_values[name]) / fit.standard_errors[name]
         tally.z.setdefault(name, []).append(z)
-        if name != "flicker_d":
-            low, high = fit.interval(name)
-            tally.interval_covers.setdefault(name, []).append(bool(low <= true_values[name] <= high))
+        low, high = fit.interval(name)
+        tally.interval_covers.setdefault(name, []).append(bool(low <= true_values[name] <= high))
     for index, error in enumerate(fit.ar_coefficient_errors):
         name = f"φ_{index + 1}"
         if index < len(truth.ar_coefficients) and error > 0:

@@ -22,7 +22,12 @@ to tens of percent) reports a small error exactly when it is underestimated: whi
 samples, θ̂ ± 1.96 s held the walk on 45 of 58 records (docs/fit_calibration.md).
 :func:`inverted_interval` (``method="inverted"``) inverts the test with the error at each candidate
 value θ₀, {θ₀ ≥ 0 : |θ̂ − θ₀| ≤ z s(θ₀)}, so that the record is judged by the spread the candidate
-itself would give; it costs one covariance across τ per step of its root search.
+itself would give; it costs one covariance across τ per step of its root search. The 1/f order d has no
+χ²-based interval of its own and its ±z·s under-covers: its standard error comes from the χ²'s curvature
+at d̂, and the χ² is far from a parabola in d where the 1/f term trades off against the white and RRW
+terms (white + RRW + 1/f + Gauss–Markov at 10⁶ samples: d̂ ± 1.96 s held d = 0.5 on 36 of 44 records,
+docs/fit_calibration.md). :func:`order_interval`, its default interval, inverts the χ² difference
+instead: 42 of 44.
 
 AR short noise: the coefficients are estimated before the GLS from the record with its slow part
 removed (:mod:`carousel_theory.autoregression`), and only the innovation variance is fitted by GLS; give
@@ -105,6 +110,7 @@ __all__ = [
     "inverted_interval",
     "nested_test",
     "observe_allan",
+    "order_interval",
     "yule_walker",
 ]
 
@@ -118,6 +124,10 @@ MINIMUM_INTERVAL_DEGREES = 1.0
 CANDIDATE_JITTER = 1e-9
 #: Relative step of the central differences that carry the AR coefficients' error into the parameters.
 AR_STEP = 1e-5
+#: The 1/f orders d the fit searches (a bounded scalar search) and :func:`order_interval` reports.
+ORDER_RANGE = (0.02, 0.98)
+#: Grid step of :func:`order_interval`'s scan of ORDER_RANGE (each end then refined by Brent's method).
+ORDER_GRID_STEP = 0.01
 #: Parameter name of each component in :class:`NoiseModel`.
 _PARAMETER = {
     "white": "white_variance",
@@ -214,27 +224,32 @@ class FitResult:
 
         ``method="inverted"`` (variances only): :func:`inverted_interval`, whose error is evaluated at each
         candidate value rather than at the estimate (for a weakly determined term; see the module text).
-        The default, ``"chi-square"``:
+        ``method="wald"``: θ̂ ± z·s for any parameter. The default, ``"chi-square"``:
 
         For a variance parameter θ̂ with standard error s the interval is χ²-based, like the Allan
         variance's own: with ν = 2θ̂²/s², ν θ̂/χ²_ν((1+level)/2) … ν θ̂/χ²_ν((1−level)/2); a variance is
         skewed and positive, which a symmetric ±z·s interval ignores. Below ν = 1 (s > √2 θ̂: the
         variance is barely determined) the χ² quantiles collapse towards 0 faster than ν (at ν = 0.005 the
-        lower end would be 111 θ̂, above the estimate), so the interval is then 0 … θ̂ + z·s. For the
-        bias and d: θ̂ ± z·s.
+        lower end would be 111 θ̂, above the estimate), so the interval is then 0 … θ̂ + z·s. For d: the
+        d₀ whose GLS χ² exceeds the fit's by at most χ²₁(level) (:func:`order_interval`; d̂ ± z·s
+        under-covers, module text). For the bias: θ̂ ± z·s.
         """
         if name not in self.standard_errors:
             raise ValueError(f"name={name!r}: must be one of {sorted(self.standard_errors)}")
         level = check_probability("level", level)
-        if method == "inverted":
+        if method not in ("chi-square", "inverted", "wald"):
+            raise ValueError(f"method={method!r}: must be 'chi-square', 'inverted' or 'wald'")
+        if method != "wald" and (method == "inverted" or name == "flicker_d"):
             key = (name, level)
-            if key not in self._inverted_intervals:
-                self._inverted_intervals[key] = inverted_interval(self, name, level)
-            return self._inverted_intervals[key]
-        if method != "chi-square":
-            raise ValueError(f"method={method!r}: must be 'chi-square' or 'inverted'")
+            if key not in self._searched_intervals:
+                self._searched_intervals[key] = (
+                    order_interval(self, level)
+                    if name == "flicker_d"
+                    else inverted_interval(self, name, level)
+                )
+            return self._searched_intervals[key]
         value, error = self.value(name), self.standard_errors[name]
-        if name in ("bias", "flicker_d") or value <= 0 or not error > 0:
+        if method == "wald" or name == "bias" or value <= 0 or not error > 0:
             z = float(stats.norm.ppf((1 + level) / 2))
             return value - z * error, value + z * error
         degrees = 2.0 * (value / error) ** 2
@@ -246,8 +261,9 @@ class FitResult:
         )
 
     @functools.cached_property
-    def _inverted_intervals(self) -> dict[tuple[str, float], tuple[float, float]]:
-        """The intervals by test inversion computed so far (each costs a root search over covariances)."""
+    def _searched_intervals(self) -> dict[tuple[str, float], tuple[float, float]]:
+        """The intervals by test inversion computed so far (each costs a search over covariances or
+        over d)."""
         return {}
 
     def value(self, name: str) -> float:
@@ -617,7 +633,7 @@ def _profile_d(problem: _Problem, cholesky: np.ndarray, d: float) -> float:
         design = _design(problem, order)
         return _generalized_least_squares(design, problem.observed, cholesky)[1]
 
-    return float(minimize_scalar(objective, bounds=(0.02, 0.98), method="bounded", options={"xatol": 1e-4}).x)
+    return float(minimize_scalar(objective, bounds=ORDER_RANGE, method="bounded", options={"xatol": 1e-4}).x)
 
 
 @dataclass(frozen=True)
@@ -826,21 +842,57 @@ def inverted_interval(fit: FitResult, name: str, level: float = 0.95) -> tuple[f
     return lower, upper
 
 
-def _error_at_candidate(fit: FitResult, index: int) -> Callable[[float], float]:
-    """s(θ₀) of the fitted variance at ``index`` (:func:`inverted_interval`), the others at the estimate."""
+def order_interval(fit: FitResult, level: float = 0.95) -> tuple[float, float]:
+    """Interval of the fitted 1/f order d at ``level`` by inverting the χ² difference: the d₀ of
+    ORDER_RANGE whose GLS χ², the variances refitted at d₀ under the fit's covariance across τ, exceeds
+    the fit's by at most χ²₁(level) (a likelihood-ratio-type test, as :func:`nested_test` compares two
+    fits). Scanned on a grid of ORDER_GRID_STEP, the ends of the accepted set refined by Brent's method;
+    the hull is returned, and an end at the edge of ORDER_RANGE means no d₀ up to it is excluded (with
+    the 1/f term at zero, the whole range). Unlike d̂ ± z·s, it follows the χ² where it is not a
+    parabola in d (module text)."""
+    if "flicker_d" not in fit.parameters:
+        raise ValueError(
+            f"fit: d was not fitted (parameters {fit.parameters}); its interval needs a fitted d"
+        )
+    level = check_probability("level", level)
+    problem = _problem_of(fit)
+    cholesky = np.linalg.cholesky(fit.tau_covariance)
+    critical = float(stats.chi2.ppf(level, 1))
+
+    def excess(order: float) -> float:
+        objective = _generalized_least_squares(_design(problem, order), problem.observed, cholesky)[1]
+        return objective - fit.chi_square - critical
+
+    low, high = ORDER_RANGE
+    grid = np.linspace(low, high, round((high - low) / ORDER_GRID_STEP) + 1)
+    grid = np.unique(np.append(grid, float(fit.model.flicker_d)))  # d̂ itself is accepted
+    accepted = np.flatnonzero(np.array([excess(float(order)) for order in grid]) <= 0.0)
+    first, last = int(accepted[0]), int(accepted[-1])
+    lower = grid[first] if first == 0 else brentq(excess, grid[first - 1], grid[first], xtol=1e-4)
+    upper = grid[last] if last == len(grid) - 1 else brentq(excess, grid[last], grid[last + 1], xtol=1e-4)
+    return float(lower), float(upper)
+
+
+def _problem_of(fit: FitResult) -> _Problem:
+    """The GLS problem of a finished fit: its used τ, components, AR coefficients and record."""
     used, allan = fit.used, fit.allan
-    components = fit.components
-    d = float(fit.model.flicker_d)
-    problem = _Problem(
+    return _Problem(
         np.asarray(allan.samples_per_cluster)[used],
         allan.avar[used],
-        components,
+        fit.components,
         tuple(fit.model.ar_coefficients),
         fit.length,
         fit.model.sample_rate,
         allan.estimator,
         "flicker_d" in fit.parameters,
     )
+
+
+def _error_at_candidate(fit: FitResult, index: int) -> Callable[[float], float]:
+    """s(θ₀) of the fitted variance at ``index`` (:func:`inverted_interval`), the others at the estimate."""
+    components = fit.components
+    d = float(fit.model.flicker_d)
+    problem = _problem_of(fit)
     theta = np.array([fit.value(_PARAMETER[c]) for c in components])
     fixed = 0.0 if fit.ar_error_covariance is None else float(fit.ar_error_covariance[index, index])
     covariance_at = _covariance_in_candidate(problem, theta, index, d)

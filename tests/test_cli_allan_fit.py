@@ -276,3 +276,28 @@ def test_fit_takes_given_ar_coefficients_and_refuses_them_where_they_mean_nothin
     with pytest.raises(SystemExit):
         main(["fit", str(path), "--model", "white,ar", "--ar-coefficients", "0.5,x"])
     assert "comma-separated numbers" in capsys.readouterr().err
+
+
+def test_fit_gives_the_fitted_order_with_its_interval_everywhere(filtered_npz, capsys, tmp_path):
+    # The 1/f order d is printed with its standard error and its χ²-difference interval; the Markdown row
+    # and the JSON member hold the same interval, which is FitResult.interval's.
+    from carousel_theory.data import load_recording
+    from carousel_theory.fitting import ORDER_RANGE, fit_recording
+
+    argv = ["fit", str(filtered_npz), "--model", "white,rrw,flicker", "--tau-min", "1"]
+    report = tmp_path / "r.md"
+    assert main([*argv, "--markdown", str(report)]) == 0
+    out = capsys.readouterr().out
+    recording = load_recording(filtered_npz)
+    fit = fit_recording(recording, ("white", "rrw", "flicker"), tau_min=1.0)["wx"]
+    low, high = fit.interval("flicker_d")
+    assert low < fit.model.flicker_d < high
+    # an end at the edge of the range searched is marked (on this recording d is not determined)
+    cell = " … ".join(f"{end:.3g}" + (" (edge)" if end in ORDER_RANGE else "") for end in (low, high))
+    lines = [text for text in out.splitlines() if text.strip().startswith("1/f order d ")]
+    assert lines and f"95 % interval {cell} (χ² difference)" in lines[0]
+    text = report.read_text(encoding="utf-8")
+    assert f"| 1/f order d, 95 % interval (χ² difference) | — | {cell} |" in text
+    assert main([*argv, "--json"]) == 0
+    column = json.loads(capsys.readouterr().out)["files"][0]["columns"]["wx"]
+    assert column["flicker_d_interval"] == pytest.approx([low, high], rel=1e-12)

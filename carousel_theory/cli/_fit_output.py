@@ -14,11 +14,18 @@ from typing import Any
 import numpy as np
 
 from carousel_theory.cli._output_units import OutputUnits
-from carousel_theory.fitting import FitResult
+from carousel_theory.fitting import ORDER_RANGE, FitResult
 from carousel_theory.noise_parameters import NoiseParameter, Quantity, noise_parameters
 from carousel_theory.units import display_unit
 
-__all__ = ["FIT_NULL_REASONS", "allan_record", "ar_coefficients_text", "fit_as_json", "fit_lines"]
+__all__ = [
+    "FIT_NULL_REASONS",
+    "allan_record",
+    "ar_coefficients_text",
+    "fit_as_json",
+    "fit_lines",
+    "order_interval_text",
+]
 
 #: Why a standard error is null in ``fit --json``: a term held at zero has none (see ``at_bound``).
 FIT_NULL_REASONS = {
@@ -121,6 +128,9 @@ def fit_as_json(fit: FitResult, output: OutputUnits) -> dict[str, Any]:
     values = {key: getattr(model, key) for key in MODEL_UNITS}
     error_units = {**MODEL_UNITS, "quantization_squared": "rad^2"}
     present = {key: error_units[key] for key in fit.standard_errors if key in error_units}
+    order = (
+        {"flicker_d_interval": list(fit.interval("flicker_d"))} if "flicker_d" in fit.standard_errors else {}
+    )
     return {
         "model": {
             **values,
@@ -137,6 +147,7 @@ def fit_as_json(fit: FitResult, output: OutputUnits) -> dict[str, Any]:
         "p_value": fit.p_value,
         "at_bound": list(fit.at_bound),
         "ar_coefficient_errors": list(fit.ar_coefficient_errors),
+        **order,
         "method": fit.method,
         "allan": allan_record(fit.allan, output),
         "model_avar": output.variances(fit.model_avar).tolist(),
@@ -179,10 +190,25 @@ def fit_lines(name: str, fit: FitResult, output: OutputUnits) -> list[str]:
         f"    {'minimum Allan deviation of the data':44s} {minimum:.4g} {display_unit(output.rate)} "
         f"at τ = {fit.allan.tau[best]:.4g} s"
     )
+    if "flicker_d" in fit.standard_errors:
+        order = f"{fit.model.flicker_d:.3g} ± {fit.standard_errors['flicker_d']:.2g}"
+        lines.append(
+            f"    {'1/f order d':44s} {order}; 95 % interval {order_interval_text(fit)} (χ² difference)"
+        )
     lines += _ar_lines(fit)
     if fit.at_bound:
         lines.append(f"    held at zero: {', '.join(fit.at_bound)}")
     return lines
+
+
+def order_interval_text(fit: FitResult) -> str:
+    """The fitted 1/f order's 95 % interval as ``low … high`` (:func:`carousel_theory.fitting.order_interval`;
+    an end at the range searched is marked), "" when d was not fitted."""
+    if "flicker_d" not in fit.standard_errors:
+        return ""
+    low, high = fit.interval("flicker_d")
+    ends = [f"{value:.3g}" + (" (edge)" if value in ORDER_RANGE else "") for value in (low, high)]
+    return " … ".join(ends)
 
 
 def ar_coefficients_text(fit: FitResult, digits: int) -> str:

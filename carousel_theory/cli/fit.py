@@ -12,7 +12,13 @@ from typing import Any
 
 import numpy as np
 
-from carousel_theory.cli._fit_output import FIT_NULL_REASONS, ar_coefficients_text, fit_as_json, fit_lines
+from carousel_theory.cli._fit_output import (
+    FIT_NULL_REASONS,
+    ar_coefficients_text,
+    fit_as_json,
+    fit_lines,
+    order_interval_text,
+)
 from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
 from carousel_theory.cli.allan import add_recording_arguments, read_recording
 from carousel_theory.fit_defaults import DEFAULT_TAU_MIN, DEFAULT_TAU_MIN_OCTAVES, LADDER, select_default_fit
@@ -264,7 +270,15 @@ def _parameter_rows(fits: dict[str, FitResult], axes: list[str], args: argparse.
                     ],
                 )
             )
-    return lines + _ar_rows(fits, axes)
+    return lines + _order_interval_rows(fits, axes) + _ar_rows(fits, axes)
+
+
+def _order_interval_rows(fits: dict[str, FitResult], axes: list[str]) -> list[str]:
+    """The fitted 1/f order's 95 % interval (:func:`carousel_theory.fitting.order_interval`), when fitted."""
+    if not any("flicker_d" in fits[axis].standard_errors for axis in axes):
+        return []
+    cells = [order_interval_text(fits[axis]) or "—" for axis in axes]
+    return [_row("1/f order d, 95 % interval (χ² difference)", "—", cells)]
 
 
 def _ar_rows(fits: dict[str, FitResult], axes: list[str]) -> list[str]:
