@@ -13,6 +13,8 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, settings
 
+from carousel_theory.noise_model import NoiseModel
+
 settings.register_profile("ci", max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 settings.register_profile("dev", max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 settings.register_profile("thorough", max_examples=500, deadline=None)
@@ -22,6 +24,17 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 Z_MONTE_CARLO = 4.5
 
 SHARED_DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data"
+
+#: A MEMS gyro axis at 100 Hz: white + RRW + 1/f (d = 0.5) + first-order Gauss–Markov, per-sample
+#: variances in (rad/s)² (the model of benchmarks/bench_fit_vs_allantools.py and
+#: benchmarks/bench_fit_calibration.py).
+GYRO_VARIANCES = {
+    "white_variance": 3.6e-5,
+    "rrw_variance": 1e-14,
+    "flicker_variance": 1e-9,
+    "ar_variance": 4e-6,
+}
+GYRO_MODEL = NoiseModel(sample_rate=100.0, flicker_d=0.5, ar_coefficients=(0.8,), **GYRO_VARIANCES)
 
 
 @pytest.fixture(autouse=True)

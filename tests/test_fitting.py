@@ -8,7 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from conftest import Z_MONTE_CARLO
+from conftest import GYRO_MODEL, Z_MONTE_CARLO
 
 from carousel_theory import fitting
 from carousel_theory.fitting import FitResult, NoiseModel, fit_noise_model
@@ -412,15 +412,6 @@ def test_inverted_interval_refuses_what_it_cannot_do(name, method, message):
 
 # --- the 1/f order's interval ----------------------------------------------------------------------------
 
-_GYRO = NoiseModel(
-    sample_rate=100.0,
-    white_variance=3.6e-5,
-    rrw_variance=1e-14,
-    flicker_variance=1e-9,
-    flicker_d=0.5,
-    ar_variance=4e-6,
-    ar_coefficients=(0.8,),
-)
 _FULL = ("white", "rrw", "flicker", "ar")
 
 
@@ -471,7 +462,7 @@ def test_order_interval_covers_where_d_plus_minus_z_s_does_not():
     rng = np.random.default_rng([2026, 2, 1_000_000])
     profile = wald = counted = 0
     for _ in range(60):
-        fit = fit_noise_model(sample_noise(_GYRO, 1_000_000, rng=rng), 100.0, _FULL)
+        fit = fit_noise_model(sample_noise(GYRO_MODEL, 1_000_000, rng=rng), 100.0, _FULL)
         low, high = fit.interval("flicker_d")
         profile += low <= 0.5 <= high
         if "flicker_variance" not in fit.at_bound:

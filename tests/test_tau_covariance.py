@@ -4,9 +4,11 @@ a seeded Monte Carlo."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
-from conftest import Z_MONTE_CARLO
+from conftest import GYRO_MODEL, Z_MONTE_CARLO
 from scipy.linalg import toeplitz
 
 from carousel_theory import tau_covariance
@@ -210,17 +212,11 @@ FIT_MODELS = {
 
 @pytest.mark.parametrize("name", sorted(FIT_MODELS))
 def test_weights_rule_gives_the_proved_rules_covariance_at_a_million_samples(name):
-    # The fit's rule against the reported one at octave τ of 10⁶ samples at 100 Hz (the gyro models of
-    # benchmarks/bench_fit_vs_allantools.py): the same covariance to 10⁻¹¹ of √(C_ii C_jj) (measured up to
+    # The fit's rule against the reported one at octave τ of 10⁶ samples at 100 Hz (GYRO_MODEL with
+    # other orders d and AR coefficients): the same covariance to 10⁻¹¹ of √(C_ii C_jj) (measured up to
     # 5·10⁻¹³; at d ≥ 0.75 both rules' rounding reaches 10⁻⁹–10⁻⁷ of the scale and the comparison against
     # every lag above holds them).
-    variances = {
-        "white_variance": 3.6e-5,
-        "rrw_variance": 1e-14,
-        "flicker_variance": 1e-9,
-        "ar_variance": 4e-6,
-    }
-    model = NoiseModel(sample_rate=100.0, **variances, **FIT_MODELS[name])
+    model = replace(GYRO_MODEL, **FIT_MODELS[name])
     sizes, length = 2 ** np.arange(19), 1_000_000
     proved = allan_estimate_covariance(model, sizes, length).covariance
     weights = allan_estimate_covariance(model, sizes, length, bound=False, rule=WEIGHTS_RULE).covariance
