@@ -855,6 +855,10 @@ def order_interval(fit: FitResult, level: float = 0.95) -> tuple[float, float]:
             f"fit: d was not fitted (parameters {fit.parameters}); its interval needs a fitted d"
         )
     level = check_probability("level", level)
+    if fit.tau_covariance is None:
+        raise ValueError(
+            "fit: carries no covariance across τ (tau_covariance), which the χ² difference needs"
+        )
     problem = _problem_of(fit)
     cholesky = np.linalg.cholesky(fit.tau_covariance)
     critical = float(stats.chi2.ppf(level, 1))
