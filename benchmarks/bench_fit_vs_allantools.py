@@ -159,7 +159,6 @@ def _breakdown(y: np.ndarray, components: tuple[str, ...]) -> None:
     τ-covariances, and within them the pairs' structure (plans, partitions, gathers; once per record),
     the terms' values at the exact lags and Gauss nodes (each covariance), and the sums with the rest."""
     lag_quadrature.pair_batch.cache_clear()
-    lag_quadrature._planned.cache_clear()
     spent: dict[str, float] = {}
     with contextlib.ExitStack() as stack:
         stack.enter_context(_clocked(fitting, "allan_estimate_covariance", spent))

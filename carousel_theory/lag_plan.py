@@ -55,6 +55,21 @@ class QuadratureRule:
     block_ratio: float
     exact_reach: int
 
+    def __post_init__(self) -> None:
+        # N c² of the finite terms is a polynomial of degree 7 on a block: the rule must be exact for it.
+        if isinstance(self.points, bool) or not isinstance(self.points, int) or self.points < 4:
+            raise ValueError(
+                f"points={self.points!r}: must be an integer ≥ 4 (exact to degree 2·points − 1 ≥ 7)"
+            )
+        if not 0.0 < self.block_ratio <= 1.0:
+            raise ValueError(f"block_ratio={self.block_ratio!r}: must be in (0, 1]")
+        if (
+            isinstance(self.exact_reach, bool)
+            or not isinstance(self.exact_reach, int)
+            or self.exact_reach < 1
+        ):
+            raise ValueError(f"exact_reach={self.exact_reach!r}: must be a positive integer")
+
 
 #: The reported covariance's rule: its proved bound is below 10⁻¹⁴ of the covariance for 1/f of
 #: d ≤ 0.5 beside a Gauss–Markov term, and about 10⁻¹⁰ at d = 0.95 (below the rounding there).

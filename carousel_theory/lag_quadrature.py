@@ -43,7 +43,10 @@ Far tail (distance from the support ≥ ``FAR`` times its width)
     (Newton's interpolation remainder and the monotone derivative above); that remainder is added to the
     bound through Σ w N e (2|c| + e). Pairs whose support is at most ``_DIRECT_WIDTH`` lags wide take c
     elsewhere from Σ_u W(u) γ_z(δ + u) directly (at integer lags, by γ_z evaluated once on the integers
-    the lags reach and correlated with W, and outside the support at any lag).
+    the lags reach and correlated with W, and outside the support at any lag). The finite terms' c is
+    exactly 0 in the far tail and their direct part is the nine-term sum, so the partition into exact /
+    direct / far does not depend on whether the model has 1/f: one batch serves a fit's every step,
+    whatever terms each holds at zero.
 
 Many pairs (:func:`counted_square_sums`, all the τ pairs of one covariance) are evaluated together:
 each pair is a row of :class:`_Pairs` (its ramp positions and weights, padded to nine with weight 0, and
@@ -418,17 +421,11 @@ def _flicker_derivative_bound(
 
 
 def _far(
-    pairs: _Pairs,
-    owner: np.ndarray,
-    lags: np.ndarray,
-    reach: int,
-    flicker: bool,
-    nearest: np.ndarray | None = None,
+    pairs: _Pairs, owner: np.ndarray, lags: np.ndarray, reach: int, nearest: np.ndarray | None = None
 ) -> np.ndarray:
     """Where c comes from the far-tail series: at least FAR support widths and the finite terms' reach
-    (+ 8) from the support, with 1/f in the model."""
-    if not flicker:
-        return np.zeros(len(lags), dtype=bool)
+    (+ 8) from the support (there the finite terms' c is exactly 0: the series carries the 1/f part, and
+    the AR modes' nine-term sum is added)."""
     nearest = pairs.nearest(owner, lags) if nearest is None else nearest
     return (nearest >= FAR * pairs.width()[owner]) & (nearest >= max(reach + 8, _NEWTON_TERMS + 4))
 
@@ -437,18 +434,19 @@ def _partition(
     pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(x₀, far, direct, near): how c is taken at each lag (:func:`_batch_values`)."""
-    return _partition_for(pairs, owner, lags, lag_model.reach, bool(lag_model.flicker_variance))
+    return _partition_for(pairs, owner, lags, lag_model.reach)
 
 
 def _partition_for(
-    pairs: _Pairs, owner: np.ndarray, lags: np.ndarray, reach: int, flicker: bool
+    pairs: _Pairs, owner: np.ndarray, lags: np.ndarray, reach: int
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`_partition` for finite terms reaching ``reach`` lags, with 1/f or not."""
+    """:func:`_partition` for finite terms reaching ``reach`` lags: the same for a model with or without
+    1/f, so that one batch serves both (a fit whose 1/f term is at 0 in one step and not in the next)."""
     nearest, width = pairs.nearest(owner, lags), pairs.width()[owner]
-    far = _far(pairs, owner, lags, reach, flicker, nearest)
+    far = _far(pairs, owner, lags, reach, nearest)
     # Narrow pairs at integer lags, or at any lag outside the support (where every δ + u keeps one sign
     # and γ_z is analytic).
-    direct = ~far & (width <= _DIRECT_WIDTH) & ((lags == np.rint(lags)) | (nearest >= 1)) & flicker
+    direct = ~far & (width <= _DIRECT_WIDTH) & ((lags == np.rint(lags)) | (nearest >= 1))
     return nearest, far, direct, ~far & ~direct
 
 
@@ -554,6 +552,8 @@ def _direct_values(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: 
     """c at lags of narrow pairs: the 1/f part by :func:`_direct_flicker`, the finite part by the nine-term
     sum."""
     finite = replace(lag_model, flicker_variance=0.0)
+    if not lag_model.flicker_variance:
+        return _nine_term_sum(pairs, finite, owner, lags)
     flicker = np.empty(len(lags))
     integral = lags == np.rint(lags)
     integers = None
@@ -602,7 +602,9 @@ def _parted_values(
     if near_values is not None:
         values[near] = near_values
     if np.any(far):
-        values[far], far_errors = _newton_series(pairs, lag_model, owner[far], nearest[far], bounds)
+        values[far], far_errors = 0.0, None  # the finite terms' c is exactly 0 there
+        if lag_model.flicker_variance:
+            values[far], far_errors = _newton_series(pairs, lag_model, owner[far], nearest[far], bounds)
         if lag_model.modes is not None:
             values[far] += _modal_values(pairs, lag_model, owner[far], lags[far])[0]
         if far_errors is not None:
@@ -715,7 +717,6 @@ class PairBatch:
 
     pairs: _Pairs
     reach: int
-    flicker: bool
     rule: QuadratureRule
     lag_owner: np.ndarray
     lags: np.ndarray
@@ -733,7 +734,7 @@ class PairBatch:
     @functools.cached_property
     def lag_parts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """:func:`_partition` of the exact lags."""
-        return _partition_for(self.pairs, self.lag_owner, self.lags, self.reach, self.flicker)
+        return _partition_for(self.pairs, self.lag_owner, self.lags, self.reach)
 
     @functools.cached_property
     def lag_gather(self) -> _Gathered:
@@ -744,7 +745,7 @@ class PairBatch:
     @functools.cached_property
     def node_parts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """:func:`_partition` of the Gauss nodes."""
-        return _partition_for(self.pairs, self.node_owner, self.nodes, self.reach, self.flicker)
+        return _partition_for(self.pairs, self.node_owner, self.nodes, self.reach)
 
     @functools.cached_property
     def node_gather(self) -> _Grid:
@@ -753,24 +754,9 @@ class PairBatch:
 
     @classmethod
     def of(
-        cls,
-        pairs: Sequence[tuple[int, int, int, int]],
-        reach: int,
-        flicker: bool,
-        rule: QuadratureRule = PROVED_RULE,
+        cls, pairs: Sequence[tuple[int, int, int, int]], reach: int, rule: QuadratureRule = PROVED_RULE
     ) -> PairBatch:
-        """The batch of (m_i, m_j, K_i, K_j) ``pairs`` for terms reaching ``reach`` lags, with 1/f or not,
-        by ``rule``: the plan is shared with the batch of the other 1/f flag (:func:`_planned`; a fit
-        whose first step puts its 1/f term at zero needs both)."""
-        return replace(_planned(tuple(tuple(pair) for pair in pairs), reach, rule), flicker=flicker)
-
-    @classmethod
-    def planned(
-        cls, pairs: tuple[tuple[int, int, int, int], ...], reach: int, rule: QuadratureRule
-    ) -> PairBatch:
-        """The plan's part of the batch, the same for both 1/f flags (made with the flag off; :meth:`of`
-        copies it with the flag it needs, the partitions and gathers formed on the copy)."""
-        flicker = False
+        """The batch of (m_i, m_j, K_i, K_j) ``pairs`` for terms reaching ``reach`` lags, by ``rule``."""
         batch = _Pairs.of([_make_pair(*pair) for pair in pairs])
         plan = plan_pairs(pairs, reach, rule)
         lags, owner = plan.lags.astype(np.float64), plan.lag_owner
@@ -782,7 +768,7 @@ class PairBatch:
         node_owner = block_owner[block]
         largest = np.maximum(batch.count(block_owner, ends[:, 0]), batch.count(block_owner, ends[:, 1]))
         return cls(
-            batch, reach, flicker, rule, owner, lags, batch.count(owner, lags), nodes, weights, block,
+            batch, reach, rule, owner, lags, batch.count(owner, lags), nodes, weights, block,
             node_owner, weights * batch.count(node_owner, nodes), block_owner, ends, largest,
             np.exp(log_norms),
         )  # fmt: skip
@@ -806,10 +792,8 @@ def term_values(batch: PairBatch, lag_model: LagModel, *, bounds: bool = True) -
     :func:`counted_square_sums` sums, element by element; without ``bounds`` the same values, no error
     bounds (empty arrays)."""
     pairs = batch.pairs
-    if lag_model.reach != batch.reach or bool(lag_model.flicker_variance) != batch.flicker:
-        raise ValueError(
-            f"lag_model.reach={lag_model.reach!r}: must be the batch's reach {batch.reach}, with 1/f"
-        )
+    if lag_model.reach != batch.reach:
+        raise ValueError(f"lag_model.reach={lag_model.reach!r}: must be the batch's reach {batch.reach}")
     values, errors = _parted_values(
         pairs,
         lag_model,
@@ -960,29 +944,18 @@ def counted_square_sums(
     the plan's (module text: Rules)."""
     if not pairs:
         return []
-    batch = pair_batch(
-        tuple(tuple(pair) for pair in pairs), lag_model.reach, bool(lag_model.flicker_variance), rule
-    )
+    batch = pair_batch(tuple(tuple(pair) for pair in pairs), lag_model.reach, rule)
     return combined_sums(batch, [term_values(batch, lag_model, bounds=bounds)], [1.0], bounds=bounds)
 
 
 @functools.lru_cache(maxsize=4)
-def _planned(pairs: tuple[tuple[int, int, int, int], ...], reach: int, rule: QuadratureRule) -> PairBatch:
-    """:meth:`PairBatch.planned`, kept for the batch of the other 1/f flag."""
-    return PairBatch.planned(pairs, reach, rule)
-
-
-@functools.lru_cache(maxsize=4)
 def pair_batch(
-    pairs: tuple[tuple[int, int, int, int], ...],
-    reach: int,
-    flicker: bool,
-    rule: QuadratureRule = PROVED_RULE,
+    pairs: tuple[tuple[int, int, int, int], ...], reach: int, rule: QuadratureRule = PROVED_RULE
 ) -> PairBatch:
     """:meth:`PairBatch.of` with its gathers built, kept for the next covariance of the same pairs (a fit's
-    iterations, the next record of the same length and AR reach; four kept: a fit uses one for its τ and
-    one for the intervals at every τ, and a term fitted at zero changes the key)."""
-    batch = PairBatch.of(pairs, reach, flicker, rule)
+    iterations, whatever terms each step holds at zero, and the next record of the same length and AR
+    reach; four kept: a fit uses one for its τ and one for the intervals at every τ)."""
+    batch = PairBatch.of(pairs, reach, rule)
     _ = (batch.lag_gather, batch.node_gather)
     return batch
 
@@ -998,6 +971,8 @@ def rounding_scales(
     len(W)·|c| where it is the direct sum, |c| in the far tail; plus, with AR modes, Σ_q |w_q θ G| where
     the direct sum or the far tail's series has the modes' nine-term sum beside it."""
     _, far, direct, near = _partition(pairs, lag_model, owner, lags)
+    if not lag_model.flicker_variance:  # without 1/f a direct value is the nine-term sum alone
+        near, direct = near | direct, np.zeros_like(direct)
     scales = np.abs(values)
     scales[direct] *= (2 * pairs.m_i + 2 * pairs.m_j - 3)[owner[direct]]
     if lag_model.modes is not None:  # the modes' nine-term sum beside the Newton series or the direct sum
@@ -1023,9 +998,7 @@ def rounding_allowances(
     Rounding)."""
     if not pairs:
         return []
-    batch = pair_batch(
-        tuple(tuple(pair) for pair in pairs), lag_model.reach, bool(lag_model.flicker_variance), rule
-    )
+    batch = pair_batch(tuple(tuple(pair) for pair in pairs), lag_model.reach, rule)
     rows = batch.pairs
     values = term_values(batch, lag_model, bounds=False)
     at_lags = rounding_scales(rows, lag_model, batch.lag_owner, batch.lags, values.lags)

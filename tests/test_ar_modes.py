@@ -122,6 +122,6 @@ def test_exact_lags_do_not_grow_with_the_correlation_time():
             ar_coefficients=coefficients,
         )
         lag_model = LagModel.of(model)
-        batch = PairBatch.of(pairs, lag_model.reach, True)
+        batch = PairBatch.of(pairs, lag_model.reach)
         counts.append((len(batch.lags), len(batch.nodes)))
     assert len(set(counts)) == 1

@@ -144,3 +144,19 @@ def test_plan_of_octave_pairs_at_a_twelve_hour_record_is_the_reference(rule):
         lags, blocks = _reference_plan(*pairs[row], 40, rule)
         np.testing.assert_array_equal(plan.lags[plan.lag_owner == row], lags)
         assert plan.blocks[plan.block_owner == row].tolist() == [list(block) for block in blocks]
+
+
+@pytest.mark.parametrize(
+    ("arguments", "message"),
+    [
+        ((3, 0.5, 32), "points=3"),
+        ((8.0, 0.5, 32), "points=8.0"),
+        ((8, 0.0, 32), "block_ratio=0.0"),
+        ((8, 1.5, 32), "block_ratio=1.5"),
+        ((8, float("nan"), 32), "block_ratio=nan"),
+        ((8, 1.0, 0), "exact_reach=0"),
+    ],
+)
+def test_quadrature_rule_refuses_what_the_bound_does_not_cover(arguments, message):
+    with pytest.raises(ValueError, match=message):
+        QuadratureRule(*arguments)

@@ -284,7 +284,7 @@ def test_fourth_sum_table_is_direct_evaluation(with_ar):
     terms = [length - 2 * m + 1 for m in sizes]
     pairs = [(sizes[i], sizes[j], terms[i], terms[j]) for j in range(len(sizes)) for i in range(j + 1)]
     lag_model = LagModel.of(model)
-    batch = PairBatch.of(pairs, lag_model.reach, True)
+    batch = PairBatch.of(pairs, lag_model.reach)
     near = batch.lag_parts[3]
     assert np.count_nonzero(near) > 1000
     got = batch.lag_gather.values(lag_model)
@@ -322,14 +322,14 @@ def test_gridded_node_values_equal_the_nine_term_sum(d, length, with_ar):
     terms = [length - 2 * m + 1 for m in sizes]
     pairs = [(sizes[i], sizes[j], terms[i], terms[j]) for j in range(len(sizes)) for i in range(j + 1)]
     lag_model = LagModel.of(model)
-    batch = PairBatch.of(pairs, lag_model.reach, True)
+    batch = PairBatch.of(pairs, lag_model.reach)
     near = batch.node_parts[3]
     assert np.any(near)
     _assert_node_values_are_nine_term_sums(batch, lag_model, near)
     # The batch holds only the pairs' structure: reused for another model it gives a fresh batch's sums.
     other = LagModel.of(replace(model, flicker_d=1.0 - d, white_variance=2.0))
     reused = combined_sums(batch, [term_values(batch, other)], [1.0])
-    fresh_batch = PairBatch.of(pairs, other.reach, True)
+    fresh_batch = PairBatch.of(pairs, other.reach)
     assert reused == combined_sums(fresh_batch, [term_values(fresh_batch, other)], [1.0])
 
 
@@ -342,7 +342,7 @@ def test_gridded_node_values_hold_for_blocks_longer_than_four_million_lags(lengt
     terms = [length - 2 * m + 1 for m in sizes]
     pairs = [(sizes[i], sizes[j], terms[i], terms[j]) for j in range(len(sizes)) for i in range(j + 1)]
     lag_model = LagModel.of(model)
-    batch = PairBatch.of(pairs, lag_model.reach, True)
+    batch = PairBatch.of(pairs, lag_model.reach)
     near = batch.node_parts[3]
     blocks = batch.block_ends[:, 1] - batch.block_ends[:, 0] + 1
     assert blocks.max() > 2**22
