@@ -315,9 +315,32 @@ def ar_autocovariance(coefficients: tuple[float, ...], lags: int) -> np.ndarray:
     right[0] = 1.0
     gamma[: p + 1] = linalg.solve(system, right)
     reach = min(lags, p + 2 + ar_decay_lags(coefficients)) if _slowest_root(coefficients) else lags
-    for k in range(p + 1, reach):
-        gamma[k] = float(np.dot(phi, gamma[k - p : k][::-1]))
+    if reach > p + 1:
+        gamma[p + 1 : reach] = _ar_recursion(phi, gamma[: p + 1], reach - p - 1)
     return _frozen(gamma[:lags])
+
+
+#: Beyond this many lags an AR(p ≥ 2) recursion runs in scipy.signal.lfilter (C) instead of a loop.
+_LOOPED_LAGS = 2048
+
+
+def _ar_recursion(phi: np.ndarray, head: np.ndarray, count: int) -> np.ndarray:
+    """γ(k) = Σ_j φ_j γ(k − j) for the ``count`` lags after ``head`` = γ(0 … p). AR(1): the running product
+    γ(k − 1)·φ, the recursion's own multiplications in its order (np.multiply.accumulate); AR(p): the loop,
+    or, over many lags (a slow complex pair), the same recursion as an all-pole filter of zero input."""
+    p = len(phi)
+    if p == 1:
+        return np.multiply.accumulate(np.concatenate(([head[-1]], np.full(count, phi[0]))))[1:]
+    if count > _LOOPED_LAGS:
+        from scipy.signal import lfilter, lfiltic  # loaded only for a long AR(p ≥ 2) recursion
+
+        denominator = np.concatenate(([1.0], -phi))
+        state = lfiltic([1.0], denominator, head[:0:-1])
+        return np.asarray(lfilter([1.0], denominator, np.zeros(count), zi=state)[0])
+    gamma = np.concatenate((head, np.zeros(count)))
+    for k in range(p + 1, p + 1 + count):
+        gamma[k] = float(np.dot(phi, gamma[k - p : k][::-1]))
+    return gamma[p + 1 :]
 
 
 @functools.lru_cache(maxsize=64)

@@ -80,6 +80,23 @@ def test_ar2_autocovariance_solves_yule_walker_and_matches_spectrum():
         assert integral == pytest.approx(gamma[k], rel=1e-6, abs=1e-9)
 
 
+@pytest.mark.parametrize(
+    "phi", [(0.8,), (0.9997,), (-0.6,), (0.5, 0.2), (1.98, -0.9801), (0.6, 0.39), (0.5, 0.2, 0.1)]
+)
+def test_ar_autocovariance_follows_its_recursion_out_to_its_reach(phi):
+    # Beyond γ(0 … p) every value is Σ_j φ_j γ(k − j) of the values before it (AR(1): the running product,
+    # out to 1.5·10⁵ lags at φ = 0.9997; AR(p) beyond 2048 lags: the recursion as an all-pole filter),
+    # to the rounding of one step; the values stop at the reach of ρ^k ≥ AR_TRUNCATION and are 0 after.
+    reach = len(phi) + 2 + noise_model.ar_decay_lags(phi)
+    gamma = np.asarray(ar_autocovariance(phi, reach + 10))
+    p = len(phi)
+    recursed = np.array([np.dot(phi, gamma[k - p : k][::-1]) for k in range(p + 1, reach)])
+    magnitude = np.array([np.dot(np.abs(phi), np.abs(gamma[k - p : k])) for k in range(p + 1, reach)])
+    assert np.all(np.abs(gamma[p + 1 : reach] - recursed) <= 4 * np.finfo(float).eps * magnitude)
+    assert np.all(gamma[reach:] == 0.0)
+    assert abs(gamma[reach - 1]) > 0.0
+
+
 @pytest.mark.parametrize("dps", [30, 50])
 @pytest.mark.parametrize("d", [0.3, 0.5, 0.8])
 def test_flicker_allan_variance_against_spectral_integral(d, dps):
