@@ -38,7 +38,8 @@ for φ = 0.5, 0.8, 0.9, 0.95 the mean is within one standard deviation (0.0015�
 the high-order AR(1) is chosen on 9 records, plain Yule–Walker's AR(4) on 3; elsewhere always AR(1));
 at φ = 0.99
 (τ_c = 1 s against W = 10 s, where the first-order correction no longer suffices) the mean is 0.977 and
-the spread 0.013.
+the spread 0.013. :func:`correlation_is_long` says where that bias begins; the noise-model fit refines
+such an AR(1) coefficient by its χ² on the Allan variance (:mod:`carousel_theory.fitting`).
 
 :func:`coefficient_covariance` — the coefficients' large-sample covariance. Both estimators solve
 M(γ̂) φ = b(γ̂) (least squares for the high-order one), so to first order dφ = M⁺ (db − dM φ) = G dγ̂ and
@@ -64,11 +65,13 @@ from carousel_theory._validation import check_finite_array, check_positive_integ
 from carousel_theory.noise_model import ar_autocovariance, ar_decay_lags, ar_long_run_variance, stationary_ar
 
 __all__ = [
+    "LONG_CORRELATION_FRACTION",
     "ShortNoiseEstimate",
     "bartlett_covariance",
     "coefficient_covariance",
     "coefficient_gradient",
     "coefficients_from_autocovariance",
+    "correlation_is_long",
     "high_pass_window",
     "high_passed_autocovariance",
     "short_noise_coefficients",
@@ -91,6 +94,22 @@ THRESHOLD = 4.0
 def high_pass_window(sample_rate: float) -> int:
     """W = max(1001, 10 s) samples, odd: the centred moving average removed before the autocovariance."""
     return max(1001, round(10 * float(sample_rate)) | 1)
+
+
+#: An AR(1) correlation time above W/this (W the high-pass window) is where the estimate is biased low:
+#: between the measured W/51, where the bias is within the spread, and W/10, where it is one spread
+#: (module text; φ = 0.99 at τ_c = W/10 came out 0.977).
+LONG_CORRELATION_FRACTION = 20.0
+
+
+def correlation_is_long(
+    coefficients: tuple[float, ...], sample_rate: float, fraction: float = LONG_CORRELATION_FRACTION
+) -> bool:
+    """Is ``coefficients`` an AR(1) with 0 < φ < 1 whose correlation time −1/ln φ samples exceeds
+    W/``fraction`` (by default where this module's estimate of it is biased low)?"""
+    if len(coefficients) != 1 or not 0.0 < coefficients[0] < 1.0:
+        return False
+    return -1.0 / math.log(coefficients[0]) > high_pass_window(sample_rate) / fraction
 
 
 def high_passed_autocovariance(x: Any, sample_rate: float, lags: int) -> tuple[np.ndarray, int]:

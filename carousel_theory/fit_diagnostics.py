@@ -24,8 +24,9 @@ user reads beside the numbers (``fit`` prints them on stdout and writes them int
     τ_c = −1/(f_s ln φ) exceeds W/:data:`AR_CORRELATION_FRACTION`: there the estimate is biased low
     (:mod:`carousel_theory.autoregression`, 12 records of 10⁶ samples at 100 Hz: at φ = 0.95, τ_c = W/51,
     the mean is within one standard deviation of φ; at φ = 0.99, τ_c = W/10, it is 0.977 with a spread of
-    0.013), and a rejected fit may be the coefficient's fault. The remedy is the known coefficient, given
-    (``--ar-coefficients``).
+    0.013), and the fit could not refine it by its χ² on the Allan variance (which it does there, and which
+    removes the bias: :func:`carousel_theory.fitting.fit_observed`), so a rejected fit may be the
+    coefficient's fault. The remedy is the known coefficient, given (``--ar-coefficients``).
 ``angle_random_walk_read_off``
     The textbook read-off of the angle random walk, σ_A(τ)·√τ at the octave τ nearest 1 s (IEEE Std
     952-1997 Annex C: the −1/2 line at τ = 1 s), differs from the fitted white noise by more than
@@ -41,8 +42,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from carousel_theory.autoregression import high_pass_window
-from carousel_theory.fitting import COMPONENT_OF_PARAMETER, FitResult
+from carousel_theory.autoregression import LONG_CORRELATION_FRACTION, correlation_is_long, high_pass_window
+from carousel_theory.fitting import ALLAN_PROFILE, COMPONENT_OF_PARAMETER, FitResult
 from carousel_theory.units import to_deg_per_sqrt_hour
 
 __all__ = [
@@ -67,9 +68,9 @@ READ_OFF_TOLERANCE = 0.05
 #: A fitted variance whose standard error exceeds this fraction of it is reported as weakly determined.
 WEAK_TERM_LEVEL = 0.3
 #: An estimated Gauss–Markov correlation time above W/this (W the AR estimator's high-pass window) is
-#: reported: between the measured W/51, where the bias is within the spread, and W/10, where it is one
-#: spread (module text).
-AR_CORRELATION_FRACTION = 20.0
+#: reported when the fit could not refine it
+#: (:data:`carousel_theory.autoregression.LONG_CORRELATION_FRACTION`).
+AR_CORRELATION_FRACTION = LONG_CORRELATION_FRACTION
 
 
 @dataclass(frozen=True)
@@ -212,16 +213,16 @@ def read_off_notice(fit: FitResult) -> FitNotice | None:
 
 
 def ar_correlation_notice(fit: FitResult) -> FitNotice | None:
-    """The ``ar_correlation_long`` notice for an estimated AR(1) coefficient whose correlation time
-    exceeds W/:data:`AR_CORRELATION_FRACTION`, else None."""
-    coefficients = fit.model.ar_coefficients
-    if len(coefficients) != 1 or not fit.ar_coefficient_errors or not 0.0 < coefficients[0] < 1.0:
-        return None
+    """The ``ar_correlation_long`` notice for an AR(1) coefficient estimated from the record whose
+    correlation time exceeds W/:data:`AR_CORRELATION_FRACTION` and which the fit did not refine by its χ²
+    (:data:`carousel_theory.fitting.ALLAN_PROFILE`), else None."""
+    coefficients = tuple(fit.model.ar_coefficients)
     rate = float(fit.model.sample_rate)
+    estimated = fit.ar_estimator not in ("", "given", ALLAN_PROFILE)
+    if not estimated or not correlation_is_long(coefficients, rate):
+        return None
     window = high_pass_window(rate)
     samples = -1.0 / math.log(coefficients[0])
-    if samples <= window / AR_CORRELATION_FRACTION:
-        return None
     message = (
         f"the Gauss–Markov coefficient φ = {coefficients[0]:.4g} (τ_c = {samples / rate:.3g} s) was "
         f"estimated from the record less its {window / rate:.3g}-s moving average; with τ_c above "

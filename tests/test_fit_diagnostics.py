@@ -5,10 +5,13 @@ with the textbook 1-s read-off when a filter bends the short-τ end."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
+from conftest import Z_MONTE_CARLO
 
+from carousel_theory.autoregression import HIGH_ORDER, short_noise_estimate
 from carousel_theory.fit_diagnostics import (
     AR_CORRELATION_FRACTION,
     READ_OFF_TOLERANCE,
@@ -20,7 +23,7 @@ from carousel_theory.fit_diagnostics import (
     rejection_notice,
     weak_term_notices,
 )
-from carousel_theory.fitting import fit_noise_model
+from carousel_theory.fitting import ALLAN_PROFILE, fit_noise_model
 from carousel_theory.noise_model import NoiseModel
 from carousel_theory.simulate import sample_noise
 
@@ -105,22 +108,45 @@ def test_a_weakly_determined_walk_is_reported_with_its_interval_by_test_inversio
     assert notice in fit_notices(fit)
 
 
-def _gauss_markov_fit(phi: float, **options):
-    """white + AR(1) of coefficient φ, long-run AR variance 10⁻⁴, 2·10⁵ samples at 100 Hz, fitted as such."""
+def _gauss_markov_record(phi: float) -> np.ndarray:
+    """white + AR(1) of coefficient φ, long-run AR variance 10⁻⁴, 2·10⁵ samples at 100 Hz."""
     truth = NoiseModel(
         sample_rate=RATE, white_variance=3.6e-5, ar_variance=1e-4 * (1 - phi) ** 2, ar_coefficients=(phi,)
     )
-    y = sample_noise(truth, 200_000, rng=np.random.default_rng(41))
-    return fit_noise_model(y, RATE, ("white", "ar"), **options)
+    return sample_noise(truth, 200_000, rng=np.random.default_rng(41))
 
 
-def test_a_long_estimated_gauss_markov_correlation_time_is_reported():
-    # W = 1001 samples at 100 Hz: τ_c above 50 samples (φ above 0.98) is reported, a short one is not,
-    # and a given coefficient (not estimated) never is.
+def _gauss_markov_fit(phi: float, **options):
+    """:func:`_gauss_markov_record` fitted as white + AR."""
+    return fit_noise_model(_gauss_markov_record(phi), RATE, ("white", "ar"), **options)
+
+
+def test_a_long_gauss_markov_correlation_is_refined_by_the_allan_variance():
+    # τ_c = 1 s at 100 Hz against the estimator's 10-s window: the record's estimate (high-order
+    # Yule–Walker) is biased low and its model is rejected; the fit refines φ by its χ² and is not.
     slow = _gauss_markov_fit(0.99)
-    (phi,) = slow.model.ar_coefficients
-    assert -1.0 / math.log(phi) > 1001 / AR_CORRELATION_FRACTION  # the estimate is in the reported range
-    notices = [n for n in fit_notices(slow) if n.kind == "ar_correlation_long"]
+    assert slow.ar_estimator == ALLAN_PROFILE and ALLAN_PROFILE in slow.method
+    (phi,), (error,) = slow.model.ar_coefficients, slow.ar_coefficient_errors
+    assert abs(phi - 0.99) <= Z_MONTE_CARLO * error
+    assert slow.p_value > 0.01
+    record = short_noise_estimate(_gauss_markov_record(0.99), RATE, 4)
+    assert record.coefficients[0] < phi - Z_MONTE_CARLO * error  # biased low, by more than the spread
+    held = _gauss_markov_fit(0.99, ar_coefficients=record.coefficients)
+    assert held.p_value < 1e-4
+    assert ar_correlation_notice(slow) is None  # refined: nothing to report
+    short = _gauss_markov_fit(0.8)  # τ_c = 4.5 samples: the record's estimate is kept
+    assert short.ar_estimator == HIGH_ORDER
+
+
+def test_a_long_estimated_gauss_markov_correlation_time_is_reported_when_not_refined():
+    # W = 1001 samples at 100 Hz: τ_c above 50 samples (φ above 0.98) kept as the record's estimate is
+    # reported (the fit refines it unless its χ² does not fall), a short one is not, and a given
+    # coefficient never is.
+    slow = _gauss_markov_fit(0.99)
+    kept = replace(slow, ar_estimator=HIGH_ORDER)
+    (phi,) = kept.model.ar_coefficients
+    assert -1.0 / math.log(phi) > 1001 / AR_CORRELATION_FRACTION
+    notices = [n for n in fit_notices(kept) if n.kind == "ar_correlation_long"]
     assert len(notices) == 1 and f"φ = {phi:.4g}" in notices[0].message
     assert "--ar-coefficients" in notices[0].message
     assert ar_correlation_notice(_gauss_markov_fit(0.8)) is None
