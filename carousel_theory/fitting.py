@@ -40,11 +40,13 @@ coefficients describe the record's autocovariance better (a sensor's internal fi
 white noise); :func:`carousel_theory.autoregression.short_noise_coefficients`. A record whose lags
 show no correlation is refused with a pointer to the model without "ar". Those estimates read the record
 less a moving average of W samples, which biases a long correlation time low; an estimated AR(1)
-coefficient whose correlation time exceeds W/AR_REFINED_FRACTION is therefore refined by the GLS χ² on
-the Allan variance (d profiled, a grid in log(1 − φ) about the estimate, then Brent's method, the fit
-solved again at the result; its variance 2/(∂²χ²/∂φ²)): white + RRW + 1/f + Gauss–Markov at 10⁶
-samples, φ = 0.99 (τ_c = 1 s against W = 10 s), 30 records: φ̂ = 0.9901 ± 0.0012 (standard deviation)
-and 4 fits rejected at 0.05, against 0.981 ± 0.0097 and 19 with the record's estimate. The estimated
+coefficient whose correlation time exceeds W/AR_REFINED_FRACTION, in a fit that the χ² rejects at
+AR_REFINED_LEVEL, is therefore refined by the GLS χ² on the Allan variance (a grid in log τ_c from W/200
+to W, then Brent's method, the fit solved again at the result; its variance 2/(∂²χ²/∂φ²), d profiled).
+White + RRW + 1/f + Gauss–Markov at 10⁶ samples, φ = 0.99 (τ_c = 1 s against W = 10 s), 30 records
+(``benchmarks/bench_ar_refinement.py``): φ̂ = 0.9898 ± 0.0005 (standard deviation), φ̂ ± 1.96 s held φ
+on 29, 3 fits rejected at 0.05, against 0.980 ± 0.010 and 30 rejected with the record's estimate; at
+φ = 0.95 the 4 fits of 30 that the record's estimate left rejected were refined, and none is. The estimated
 coefficients' sampling error (their large-sample covariance,
 :func:`carousel_theory.autoregression.coefficient_covariance`; for a refined one, 2/(∂²χ²/∂φ²)) is
 carried into the parameters' covariance as S Cov(φ̂) Sᵀ, S = ∂θ̂/∂φ of the GLS at its final C: held
@@ -90,6 +92,7 @@ from carousel_theory.allan import AllanResult, allan_variance, check_tau_range, 
 from carousel_theory.autoregression import (
     ShortNoiseEstimate,
     correlation_is_long,
+    high_pass_window,
     short_noise_estimate,
     yule_walker,
     yule_walker_estimate,
@@ -136,14 +139,20 @@ AR_STEP = 1e-5
 ORDER_RANGE = (0.02, 0.98)
 #: Grid step of :func:`order_interval`'s scan of ORDER_RANGE (each end then refined by Brent's method).
 ORDER_GRID_STEP = 0.01
-#: The search of :func:`_profiled_ar` in log(1 − φ) about the record's estimate: correlation times from
-#: e⁻¹ to e³ ≈ 20 times the estimate's (the estimate is biased low).
-AR_PROFILE_SPAN = (-3.0, 1.0)
+#: The correlation times :func:`_profiled_ar` searches, as fractions of the estimator's window W: from
+#: W/200 to W (an AR(1) of longer τ_c, whose Allan variance the record's RRW and 1/f terms mimic, is not
+#: refined; nor is its design, of about 39 τ_c lags, grown without bound).
+AR_PROFILE_RANGE = (1.0 / 200.0, 1.0)
+#: Points of :func:`_profiled_ar`'s grid over AR_PROFILE_RANGE (log-spaced: τ_c × 1.55 per step).
+AR_PROFILE_POINTS = 13
 #: An estimated AR(1) coefficient whose correlation time exceeds W/this (W the estimator's high-pass
-#: window) is refined by the GLS χ²: twice as early as its bias shows (W/20,
-#: :data:`carousel_theory.autoregression.LONG_CORRELATION_FRACTION`), so that the estimates that the bias
-#: brought below W/20 are refined too (at φ = 0.99, τ_c = W/10, they come out 0.971–0.991).
-AR_REFINED_FRACTION = 40.0
+#: window) and whose fit the χ² rejects at AR_REFINED_LEVEL is refined by the GLS χ²: four times as early
+#: as its bias shows (W/20, :data:`carousel_theory.autoregression.LONG_CORRELATION_FRACTION`), so that the
+#: estimates that the bias brought below W/20 are refined too (at φ = 0.99, τ_c = W/10, with RRW and 1/f
+#: beside it, they come out 0.96–0.99).
+AR_REFINED_FRACTION = 80.0
+#: The χ² p-value below which a fit with a long estimated correlation time has its coefficient refined.
+AR_REFINED_LEVEL = 0.05
 #: :attr:`ShortNoiseEstimate.estimator` of an AR(1) coefficient refined by the GLS χ².
 ALLAN_PROFILE = "the GLS χ² on the Allan variance"
 #: Parameter name of each component in :class:`NoiseModel`.
@@ -713,14 +722,17 @@ def _solved(
     start_d: float,
     fixed_covariance: np.ndarray | None,
 ) -> tuple[_Problem, ShortNoiseEstimate, _Solution]:
-    """:func:`_solve`; an estimated AR(1) coefficient whose correlation time exceeds W/AR_REFINED_FRACTION
-    (:func:`carousel_theory.autoregression.correlation_is_long`) is then refined by the GLS χ² and the
-    fit solved again with it (:func:`_profiled_ar`, module text)."""
+    """:func:`_solve`; when an estimated AR(1) coefficient's correlation time exceeds W/AR_REFINED_FRACTION
+    (:func:`carousel_theory.autoregression.correlation_is_long`) and the χ² rejects the fit at
+    AR_REFINED_LEVEL, the coefficient is refined by the GLS χ² and the fit solved again with it
+    (:func:`_profiled_ar`, module text)."""
     solution = _solve(problem, start_d, options, fixed_covariance)
     long = short.estimator not in ("", "given") and correlation_is_long(
         short.coefficients, problem.sample_rate, AR_REFINED_FRACTION
     )
-    if fixed_covariance is not None or not long:
+    degrees = len(problem.observed) - len(problem.components) - int(problem.fit_d)
+    rejected = degrees > 0 and float(stats.chi2.sf(solution.chi_square, degrees)) < AR_REFINED_LEVEL
+    if fixed_covariance is not None or not long or not rejected:
         return problem, short, solution
     refined = _profiled_ar(problem, solution)
     if refined is None:
@@ -730,11 +742,11 @@ def _solved(
 
 
 def _profiled_ar(problem: _Problem, solution: _Solution) -> ShortNoiseEstimate | None:
-    """The AR(1) coefficient minimising the GLS χ² at the solution's covariance across τ (d profiled at
-    each), searched over u = log(1 − φ) from AR_PROFILE_SPAN[0] to AR_PROFILE_SPAN[1] about the first
-    estimate's (a 9-point grid, then Brent's method in the best point's cells, both at the solution's d;
-    the fit is solved again at the result, d profiled); its variance 2/(∂²χ²/∂φ²) with d profiled (the χ²
-    is −2 log L up to a constant). None when it does not lower the χ² (d profiled at both)."""
+    """The AR(1) coefficient φ = exp(−1/τ_c) minimising the GLS χ² at the solution's covariance across τ,
+    searched over log τ_c on AR_PROFILE_RANGE (an AR_PROFILE_POINTS grid, then Brent's method in the
+    best point's cells, both at the solution's d; the fit is solved again at the result, d profiled); its
+    variance 2/(∂²χ²/∂φ²) with d profiled (the χ² is −2 log L up to a constant). None when it does not
+    lower the χ² (d profiled at both)."""
     cholesky = np.linalg.cholesky(solution.covariance)
 
     def objective(phi: float, profiled: bool = True) -> float:
@@ -742,18 +754,16 @@ def _profiled_ar(problem: _Problem, solution: _Solution) -> ShortNoiseEstimate |
         order = _profile_d(shifted, cholesky, solution.d) if profiled else solution.d
         return _generalized_least_squares(_design(shifted, order), shifted.observed, cholesky)[1]
 
-    start = math.log1p(-problem.ar[0])
-    grid = start + np.linspace(*AR_PROFILE_SPAN, 9)
-    values = [objective(-math.expm1(u), profiled=False) for u in grid]
-    best = int(np.argmin(values))
+    def at_log_time(log_time: float) -> float:
+        return objective(math.exp(-math.exp(-log_time)), profiled=False)
+
+    window = high_pass_window(problem.sample_rate)
+    low, high = (math.log(window * fraction) for fraction in AR_PROFILE_RANGE)
+    grid = np.linspace(low, high, AR_PROFILE_POINTS)
+    best = int(np.argmin([at_log_time(float(u)) for u in grid]))
     bracket = (grid[max(best - 1, 0)], grid[min(best + 1, len(grid) - 1)])
-    found = minimize_scalar(
-        lambda u: objective(-math.expm1(u), profiled=False),
-        bounds=bracket,
-        method="bounded",
-        options={"xatol": 1e-4},
-    )
-    phi = -math.expm1(float(found.x))
+    found = minimize_scalar(at_log_time, bounds=bracket, method="bounded", options={"xatol": 1e-4})
+    phi = math.exp(-math.exp(-float(found.x)))
     at_phi = objective(phi)
     if not at_phi < objective(problem.ar[0]):
         return None
