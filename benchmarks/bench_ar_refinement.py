@@ -20,28 +20,15 @@ import argparse
 import time
 
 import numpy as np
+from bench_fit_vs_allantools import _truth  # the fit benchmark's axis, its AR long-run variance kept
 
 from carousel_theory.autoregression import short_noise_estimate
 from carousel_theory.fitting import ALLAN_PROFILE, fit_noise_model
-from carousel_theory.noise_model import NoiseModel
 from carousel_theory.progress import progress
 from carousel_theory.simulate import sample_noise
 
 RATE = 100.0
 COMPONENTS = ("white", "rrw", "flicker", "ar")
-
-
-def _truth(phi: float) -> NoiseModel:
-    long_run = 4e-6 / (1.0 - 0.8) ** 2  # the AR term's long-run variance of the benchmark's φ = 0.8
-    return NoiseModel(
-        sample_rate=RATE,
-        white_variance=3.6e-5,
-        rrw_variance=1e-14,
-        flicker_variance=1e-9,
-        flicker_d=0.5,
-        ar_variance=long_run * (1.0 - phi) ** 2,
-        ar_coefficients=(phi,),
-    )
 
 
 def _row(phi: float, records: int, size: int) -> str:

@@ -661,14 +661,18 @@ def _ar_method(short: ShortNoiseEstimate) -> str:
     )
 
 
+def _objective(problem: _Problem, d: float, cholesky: np.ndarray) -> float:
+    """The GLS χ² of ``problem`` at 1/f order d under C = LLᵀ, the variances refitted."""
+    return _generalized_least_squares(_design(problem, d), problem.observed, cholesky)[1]
+
+
 def _profile_d(problem: _Problem, cholesky: np.ndarray, d: float) -> float:
     """The d minimising the GLS objective at fixed covariance (bounded scalar search)."""
     if not problem.fit_d:
         return d
 
     def objective(order: float) -> float:
-        design = _design(problem, order)
-        return _generalized_least_squares(design, problem.observed, cholesky)[1]
+        return _objective(problem, order, cholesky)
 
     return float(minimize_scalar(objective, bounds=ORDER_RANGE, method="bounded", options={"xatol": 1e-4}).x)
 
@@ -746,13 +750,13 @@ def _profiled_ar(problem: _Problem, solution: _Solution) -> ShortNoiseEstimate |
     searched over log τ_c on AR_PROFILE_RANGE (an AR_PROFILE_POINTS grid, then Brent's method in the
     best point's cells, both at the solution's d; the fit is solved again at the result, d profiled); its
     variance 2/(∂²χ²/∂φ²) with d profiled (the χ² is −2 log L up to a constant). None when it does not
-    lower the χ² (d profiled at both)."""
+    lower the χ² (d profiled at both) or where its curvature is not positive."""
     cholesky = np.linalg.cholesky(solution.covariance)
 
     def objective(phi: float, profiled: bool = True) -> float:
         shifted = replace(problem, ar=(phi,))
         order = _profile_d(shifted, cholesky, solution.d) if profiled else solution.d
-        return _generalized_least_squares(_design(shifted, order), shifted.observed, cholesky)[1]
+        return _objective(shifted, order, cholesky)
 
     def at_log_time(log_time: float) -> float:
         return objective(math.exp(-math.exp(-log_time)), profiled=False)
@@ -769,8 +773,9 @@ def _profiled_ar(problem: _Problem, solution: _Solution) -> ShortNoiseEstimate |
         return None
     step = 1e-2 * (1.0 - phi)
     curvature = (objective(phi + step) - 2.0 * at_phi + objective(phi - step)) / step**2
-    variance = 2.0 / curvature if curvature > 0 else math.inf
-    return ShortNoiseEstimate((phi,), ALLAN_PROFILE, np.array([[variance]]))
+    if not curvature > 0:  # not a minimum the χ² resolves: keep the record's estimate
+        return None
+    return ShortNoiseEstimate((phi,), ALLAN_PROFILE, np.array([[2.0 / curvature]]))
 
 
 def _settled(
@@ -959,8 +964,7 @@ def order_interval(fit: FitResult, level: float = 0.95) -> tuple[float, float]:
     critical = float(stats.chi2.ppf(level, 1))
 
     def excess(order: float) -> float:
-        objective = _generalized_least_squares(_design(problem, order), problem.observed, cholesky)[1]
-        return objective - fit.chi_square - critical
+        return _objective(problem, order, cholesky) - fit.chi_square - critical
 
     low, high = ORDER_RANGE
     grid = np.linspace(low, high, round((high - low) / ORDER_GRID_STEP) + 1)

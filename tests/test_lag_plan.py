@@ -147,16 +147,16 @@ def test_plan_of_octave_pairs_at_a_twelve_hour_record_is_the_reference(rule):
 
 
 @pytest.mark.parametrize(
-    ("arguments", "message"),
+    ("arguments", "error", "message"),
     [
-        ((3, 0.5, 32), "points=3"),
-        ((8.0, 0.5, 32), "points=8.0"),
-        ((8, 0.0, 32), "block_ratio=0.0"),
-        ((8, 1.5, 32), "block_ratio=1.5"),
-        ((8, float("nan"), 32), "block_ratio=nan"),
-        ((8, 1.0, 0), "exact_reach=0"),
+        ((3, 0.5, 32), ValueError, "points=3: must be an integer >= 4"),
+        ((8.0, 0.5, 32), TypeError, "points=8.0: must be an integer"),
+        ((8, 0.0, 32), ValueError, "block_ratio=0.0"),
+        ((8, 1.5, 32), ValueError, "block_ratio=1.5"),
+        ((8, float("nan"), 32), ValueError, "block_ratio=nan"),
+        ((8, 1.0, 0), ValueError, "exact_reach=0: must be an integer >= 1"),
     ],
 )
-def test_quadrature_rule_refuses_what_the_bound_does_not_cover(arguments, message):
-    with pytest.raises(ValueError, match=message):
+def test_quadrature_rule_refuses_what_the_bound_does_not_cover(arguments, error, message):
+    with pytest.raises(error, match=message):
         QuadratureRule(*arguments)
