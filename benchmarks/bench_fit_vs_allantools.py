@@ -2,7 +2,7 @@
 τ-covariance against the dense reference.
 
 Usage: ``python benchmarks/bench_fit_vs_allantools.py [--sizes 1000000 10000000] [--models white,rrw ...]
-[--records K] [--phi 0.8 0.95 ...] [--breakdown]``
+[--records K] [--phi 0.8 0.95 ...] [--breakdown] [--seed S] [--fresh K] [--dense-size N]``
 
 For each size a seeded axis of white + rate random walk + 1/f (d = 0.5) + first-order Gauss–Markov noise
 at 100 Hz is drawn (:func:`carousel_theory.simulate.sample_noise`). Timed, once each, in this process:
@@ -20,7 +20,10 @@ fit's cost should not grow with the correlation time. A fit stops re-evaluating 
 once a step moved no parameter by more than 0.05 of its standard error, so records differ in the
 evaluations they take (each row shows them). With ``--breakdown`` each fit is run once more and its CPU
 time is split into the τ-covariances (the pairs' structure, the values at exact lags and Gauss nodes, the
-sums and the rest) and everything else.
+sums and the rest) and everything else. With ``--fresh K`` each model's first fit is timed instead in K new
+processes (records drawn with the seeds 2026, 2027, …), which is what a command-line fit of one axis pays
+after its imports; the median and the range of the K CPU ratios are printed. ``--dense-size 0`` skips the
+comparisons below.
 
 The fit weights its GLS with the lag quadrature's :data:`~carousel_theory.lag_plan.WEIGHTS_RULE`
 (:mod:`carousel_theory.lag_quadrature`, module text: Rules).
@@ -41,6 +44,8 @@ import argparse
 import contextlib
 import itertools
 import math
+import subprocess
+import sys
 import time
 from collections.abc import Iterator
 from dataclasses import replace
@@ -204,6 +209,24 @@ def _timed_records(
     return ratios
 
 
+def _fresh_processes(args: argparse.Namespace) -> None:
+    """Each model's first fit in ``args.fresh`` new processes (a record each, seeds 2026, 2027, …): what a
+    command-line fit of one axis pays. Prints the CPU ratios, their median and range."""
+    for size, phi, text in itertools.product(args.sizes, args.phi, args.models):
+        ratios = []
+        for seed in range(2026, 2026 + args.fresh):
+            command = [sys.executable, __file__, "--sizes", str(size), "--models", text, "--phi", str(phi)]
+            command += ["--seed", str(seed), "--dense-size", "0"]
+            output = subprocess.run(command, capture_output=True, text=True, check=True).stdout
+            row = next(line for line in output.splitlines() if line.split()[:2] == [str(size), "1"])
+            ratios.append(float(row.split()[6]))
+        print(
+            f"{size:>10} φ = {phi} {text:>22}: first fit of {args.fresh} fresh processes, CPU fit/allantools "
+            f"median {float(np.median(ratios)):.2f}, range {min(ratios):.2f}–{max(ratios):.2f} "
+            f"({', '.join(f'{r:.2f}' for r in ratios)})"
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[1_000_000, 10_000_000])
@@ -220,8 +243,15 @@ def main() -> None:
     parser.add_argument(
         "--breakdown", action="store_true", help="also show where each fit's CPU time goes (one more fit)"
     )
+    parser.add_argument("--seed", type=int, default=2026, help="seed of the drawn records")
+    parser.add_argument(
+        "--fresh", type=int, default=0, help="time each model's first fit in this many new processes instead"
+    )
     args = parser.parse_args()
-    rng = np.random.default_rng(2026)
+    if args.fresh:
+        _fresh_processes(args)
+        return
+    rng = np.random.default_rng(args.seed)
     print(
         f"{'samples':>10} {'record':>7} {'model':>22} {'fit (s)':>9} {'allantools (s)':>15} "
         f"{'fit/allantools':>15} {'CPU fit/allantools':>19}"
@@ -234,8 +264,9 @@ def main() -> None:
                     f"{size:>10} {text:>22}: CPU ratio of the first record {ratios[0]:.2f}, median of the "
                     f"later ones {float(np.median(ratios[1:])):.2f}"
                 )
-    _dense_check(args.dense_size, rng)
-    _every_lag_check(args.dense_size)
+    if args.dense_size:
+        _dense_check(args.dense_size, rng)
+        _every_lag_check(args.dense_size)
 
 
 if __name__ == "__main__":

@@ -366,7 +366,8 @@ _LAMBDIFIED: dict[str, Callable[..., Any]] = {}
 def _lambdified(name: str, entry: Formula) -> Callable[..., Any]:
     if name not in _LAMBDIFIED:
         arguments = [getattr(symbols, p) for p in entry.parameters]
-        _LAMBDIFIED[name] = sp.lambdify(arguments, entry.expression, "numpy")
+        # No docstring: printing the expression for it costs more than the lambdification.
+        _LAMBDIFIED[name] = sp.lambdify(arguments, entry.expression, "numpy", docstring_limit=0)
     return _LAMBDIFIED[name]
 
 

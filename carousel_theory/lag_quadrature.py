@@ -259,17 +259,36 @@ class _Pair:
         return np.minimum(self.K_i - 1, self.K_j - 1 - delta) - np.maximum(0, -delta) + 1
 
 
-@functools.lru_cache(maxsize=1024)
+#: The Gauss rules computed so far, by (L, p): kept for the process (a few hundred lengths at most).
+_GAUSS_RULES: dict[tuple[int, int], tuple[np.ndarray, np.ndarray, float]] = {}
+
+
 def _gauss_rule(length: int, points: int) -> tuple[np.ndarray, np.ndarray, float]:
     """(offsets in [0, L − 1], weights, log h_p) of the p-point Gauss rule of the uniform measure on
     {0, …, L − 1}: Golub–Welsch on the discrete Chebyshev recurrence (module text)."""
-    k = np.arange(1, points + 1, dtype=np.float64)
-    beta = k**2 * (float(length) ** 2 - k**2) / (4.0 * (4.0 * k**2 - 1.0))
-    jacobi = np.diag(np.sqrt(beta[:-1]), 1)
-    jacobi = jacobi + jacobi.T
-    nodes, vectors = np.linalg.eigh(jacobi)
-    weights = length * vectors[0] ** 2
-    return nodes + (length - 1) / 2.0, weights, math.log(length) + float(np.sum(np.log(beta)))
+    return _gauss_rules((length,), points)[0]
+
+
+def _gauss_rules(lengths: Sequence[int], points: int) -> list[tuple[np.ndarray, np.ndarray, float]]:
+    """:func:`_gauss_rule` of each length; those not yet known from one stacked ``eigh`` (LAPACK's
+    routine on each matrix in turn: the same values as one call per length)."""
+    missing = sorted({int(length) for length in lengths if (int(length), points) not in _GAUSS_RULES})
+    if missing:
+        k = np.arange(1, points + 1, dtype=np.float64)
+        size = np.array(missing, dtype=np.float64)[:, None]
+        beta = k**2 * (size**2 - k**2) / (4.0 * (4.0 * k**2 - 1.0))
+        jacobi = np.zeros((len(missing), points, points))
+        above = np.arange(points - 1)
+        jacobi[:, above, above + 1] = np.sqrt(beta[:, :-1])
+        nodes, vectors = np.linalg.eigh(jacobi + np.transpose(jacobi, (0, 2, 1)))
+        for row, length in enumerate(missing):
+            rule = (
+                nodes[row] + (length - 1) / 2.0,
+                length * vectors[row, 0] ** 2,
+                math.log(length) + float(np.sum(np.log(beta[row]))),
+            )
+            _GAUSS_RULES[(length, points)] = rule
+    return [_GAUSS_RULES[(int(length), points)] for length in lengths]
 
 
 # --- bounds and the far-tail series -----------------------------------------------------------------
@@ -696,7 +715,7 @@ def _block_layout(plan: LagPlan, points: int) -> tuple[np.ndarray, ...]:
     if not len(blocks):
         return ()
     distinct, which = np.unique(blocks[:, 1], return_inverse=True)
-    rules = [_gauss_rule(int(length), points) for length in distinct.tolist()]
+    rules = _gauss_rules(distinct.tolist(), points)
     offsets = np.stack([rule[0] for rule in rules])[which]
     weights = np.stack([rule[1] for rule in rules])[which]
     log_norms = np.array([rule[2] for rule in rules])[which]
@@ -864,7 +883,7 @@ def _gridded_gather(batch: PairBatch, chosen: np.ndarray) -> _Grid:
     keys = (shift - least) * radix + length[:, None]
     distinct, inverse = np.unique(keys.ravel(), return_inverse=True)
     lengths, which = np.unique(distinct % radix, return_inverse=True)
-    offsets = np.stack([_gauss_rule(int(size), points)[0] for size in lengths.tolist()])[which]
+    offsets = np.stack([rule[0] for rule in _gauss_rules(lengths.tolist(), points)])[which]
     arguments = (distinct // radix + least).astype(np.float64)[:, None] - offsets
     rows = inverse.reshape(keys.shape).astype(np.int32)  # each block's nine rows (q − f, length)
     matrix = _ramp_matrix(rows, pairs.weights[batch.block_owner[blocks]], len(distinct))

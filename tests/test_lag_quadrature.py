@@ -30,6 +30,7 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
+from carousel_theory import lag_quadrature
 from carousel_theory.increment_sums import flicker_increment_difference
 from carousel_theory.lag_quadrature import (
     PROVED_RULE,
@@ -39,6 +40,7 @@ from carousel_theory.lag_quadrature import (
     PairBatch,
     _direct_flicker,
     _gauss_rule,
+    _gauss_rules,
     _make_pair,
     _nine_term_sum,
     _Pairs,
@@ -182,6 +184,22 @@ def test_derivative_lemma(d, j):
         assert abs(values[0]) > abs(values[1]) > abs(values[2])
         difference = mpmath.fsum((-1) ** (p - k) * mpmath.binomial(p, k) * F(j - p + k) for k in range(p + 1))
         assert abs(values[0]) <= abs(difference)
+
+
+@pytest.mark.parametrize("points", [PROVED_RULE.points, WEIGHTS_RULE.points])
+def test_gauss_rules_of_many_lengths_at_once_are_each_length_alone(points, monkeypatch):
+    """One stacked eigh gives, bit for bit, the rule of each length computed alone."""
+    lengths = [points + 1, 25, 64, 97, 1000, 4097, 65_535, 2**20]
+    known: dict = {}
+    monkeypatch.setattr(lag_quadrature, "_GAUSS_RULES", known)
+    alone = []
+    for length in lengths:
+        known.clear()
+        alone.append(_gauss_rule(length, points))
+    known.clear()
+    together = _gauss_rules(lengths[::-1], points)[::-1]
+    for one, other in zip(alone, together, strict=True):
+        assert np.array_equal(one[0], other[0]) and np.array_equal(one[1], other[1]) and one[2] == other[2]
 
 
 @pytest.mark.parametrize("points", [PROVED_RULE.points, WEIGHTS_RULE.points])
