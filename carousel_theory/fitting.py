@@ -690,14 +690,20 @@ class _Solution:
 
 
 def _solve(
-    problem: _Problem, d: float, options: FitOptions, fixed_covariance: np.ndarray | None
+    problem: _Problem,
+    d: float,
+    options: FitOptions,
+    fixed_covariance: np.ndarray | None,
+    start: np.ndarray | None = None,
 ) -> _Solution:
-    """Iterated GLS. C starts diagonal (white-noise degrees of freedom of the data) and is re-evaluated
-    at most ``options.iterations`` times; with ``options.tolerance`` it stops once the last step moved no
-    parameter by more than that many of its standard errors."""
+    """Iterated GLS. C starts at ``start``, or diagonal (white-noise degrees of freedom of the data), and
+    is re-evaluated at most ``options.iterations`` times; with ``options.tolerance`` it stops once the last
+    step moved no parameter by more than that many of its standard errors."""
     iterations = 1 if fixed_covariance is not None else options.iterations
     if fixed_covariance is not None:
         covariance = fixed_covariance
+    elif start is not None:
+        covariance = start
     else:
         degrees = np.maximum(_white_edf(problem), 1.0)
         covariance = np.diag(2.0 * problem.observed**2 / degrees)
@@ -742,7 +748,8 @@ def _solved(
     if refined is None:
         return problem, short, solution
     problem = replace(problem, ar=refined.coefficients)
-    return problem, refined, _solve(problem, solution.d, options, None)
+    # The first solution's C, evaluated with the record's coefficient, starts the second iteration.
+    return problem, refined, _solve(problem, solution.d, options, None, start=solution.covariance)
 
 
 def _profiled_ar(problem: _Problem, solution: _Solution) -> ShortNoiseEstimate | None:

@@ -158,39 +158,64 @@ def flicker_increment_difference(x: Any, d: float, order: int = 0) -> np.ndarray
     return base / rising_factorial(np.asarray(x, dtype=np.float64) + d - 1.0, 3.0 - 2.0 * d + order)
 
 
+@functools.lru_cache(maxsize=256)
+def _polygamma_at_half_integers(a: tuple[float, ...]) -> np.ndarray:
+    """ψ^{(r−1)}(a), r = 1 … R, at half-integers a < 16 (what integer lags give: the Allan variance's
+    points give the same few for every d), kept for the next call."""
+    rows = special.polygamma(np.arange(_SERIES_TERMS)[:, None], np.array(a))
+    rows.setflags(write=False)
+    return rows
+
+
+def _polygamma_rows(a: np.ndarray) -> np.ndarray:
+    """ψ^{(r−1)}(a), r = 1 … R, one row per r, in one call (the same values as one call per order or per
+    a: a ufunc, element by element); at half-integers a kept per set of a."""
+    if np.all(2.0 * a == np.rint(2.0 * a)):
+        return _polygamma_at_half_integers(tuple(a.tolist()))
+    return special.polygamma(np.arange(_SERIES_TERMS)[:, None], a)
+
+
 def _log_gamma_slope(a: np.ndarray, step: float) -> np.ndarray:
     """(log|Γ(a + step)| − log|Γ(a)|)/step for a ≥ ½, |step| ≤ 0.1, and ψ(a) at step = 0.
 
     Below a = 16 the Taylor series Σ ψ^{(r−1)}(a) step^{r−1}/r! (terms fall at least like (2|step|)^r/r);
     above, the Stirling difference of :func:`rising_factorial` divided by the step term by term, each
     through log(1 + x)/x and (eˣ − 1)/x, x = step/a, so that no difference of large values is formed.
+    Each series is formed as one array of its terms, one row per term, added row after row (a running
+    sum down the rows: the additions of a loop over the terms, in its order).
     """
     a = np.asarray(a, dtype=np.float64)
     result = np.empty_like(a)
     small = a < _STIRLING_FROM
     if np.any(small):
-        total = np.zeros(int(np.count_nonzero(small)))
-        # ψ^{(r−1)}(a), r = 1 … R, one row per r, in one call (the same values as one call per order)
-        derivatives = special.polygamma(np.arange(_SERIES_TERMS)[:, None], a[small])
-        factorial, power = 1.0, 1.0
-        for r in range(1, _SERIES_TERMS + 1):
-            factorial *= r
-            total += derivatives[r - 1] * (power / factorial)
-            power *= step
-        result[small] = total
+        result[small] = _taylor_slope(a[small], step)
+        if np.all(small):
+            return result
     large = a[~small]
     ratio = step / large
     log_step = np.log1p(ratio)
     log_ratio = log_step / ratio if step else np.ones_like(large)
     slope = (large - 0.5) / large * log_ratio + np.log(large + step) - 1.0
     inverse, inverse_square = 1.0 / large, 1.0 / large**2
-    powers = inverse * inverse  # a^{e − 1}, e = 1 − 2k
-    for k, coefficient in enumerate(_STIRLING, start=1):
-        exponent = 1 - 2 * k  # [(a + step)^e − a^e]/step = a^{e−1} · e · exprel(e log(1 + x)) · log(1 + x)/x
-        slope += coefficient * exponent * powers * special.exprel(exponent * log_step) * log_ratio
-        powers = powers * inverse_square
-    result[~small] = slope
+    # a^{e − 1}, e = 1 − 2k: a⁻² then a product by a⁻² per term
+    powers = np.cumprod(np.vstack([inverse * inverse] + [inverse_square] * (len(_STIRLING) - 1)), axis=0)
+    exponents = np.arange(1, len(_STIRLING) + 1)[:, None] * -2 + 1
+    # [(a + step)^e − a^e]/step = a^{e−1} · e · exprel(e log(1 + x)) · log(1 + x)/x
+    scaled = np.array([c * (1 - 2 * k) for k, c in enumerate(_STIRLING, start=1)])[:, None]
+    terms = scaled * powers * special.exprel(exponents * log_step) * log_ratio
+    result[~small] = np.cumsum(np.vstack([slope[None, :], terms]), axis=0)[-1]
     return result
+
+
+def _taylor_slope(a: np.ndarray, step: float) -> np.ndarray:
+    """Σ_{r=1}^{R} ψ^{(r−1)}(a) step^{r−1}/r! at a < 16 (:func:`_log_gamma_slope`)."""
+    coefficients, factorial, power = [], 1.0, 1.0
+    for r in range(1, _SERIES_TERMS + 1):
+        factorial *= r
+        coefficients.append(power / factorial)
+        power *= step
+    terms = _polygamma_rows(a) * np.array(coefficients)[:, None]
+    return np.cumsum(terms, axis=0)[-1]
 
 
 def _near_half_ratio(j: np.ndarray, d: float) -> np.ndarray:

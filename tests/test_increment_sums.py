@@ -20,14 +20,17 @@ import pytest
 import sympy as sp
 from hypothesis import example, given
 from hypothesis import strategies as st
+from scipy import special
 
 from carousel_theory import symbols
 from carousel_theory.increment_sums import (
+    _SERIES_TERMS,
     FLICKER_FOURTH_SUM,
     FLICKER_INCREMENT_AUTOCOVARIANCE,
     LOG_RATIO_COEFFICIENTS,
     LOG_RATIO_SLOPES,
     SQUARE_SUM_HEAD,
+    _polygamma_rows,
     allan_variance_from_fourth_sum,
     finite_fourth_sum,
     flicker_allan_variance_closed,
@@ -235,3 +238,15 @@ def test_first_omitted_coefficients_of_the_even_series_are_bounded(k, largest):
     candidates = [sp.Integer(1), sp.Integer(3)]
     candidates += [root for root in sp.real_roots(coefficient.diff(s)) if 1 <= root <= 3]
     assert max(abs(coefficient.eval(point)).evalf(30) for point in candidates) <= largest
+
+
+@pytest.mark.parametrize(
+    "a", [[0.5, 1.5, 2.5, 7.5, 15.5, 0.5], [3.5], [0.75, 1.5, 9.25], [0.5 + k for k in range(16)]]
+)
+def test_polygamma_rows_kept_per_half_integer_are_the_one_call_values(a):
+    """The near-½ series' ψ^{(r)}: kept per half-integer a (integer lags), or computed in one call
+    otherwise; either way bit for bit the one broadcast call."""
+    a = np.array(a)
+    expected = special.polygamma(np.arange(_SERIES_TERMS)[:, None], a)
+    for _ in range(2):  # computed, then from the kept columns
+        assert np.array_equal(_polygamma_rows(a), expected)
