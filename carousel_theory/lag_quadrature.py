@@ -362,23 +362,38 @@ class _Pairs:
         return np.maximum(2 * self.m_i + 2 * self.m_j - 4, 1)
 
 
+@dataclass(frozen=True)
+class _FarTail:
+    """What the far-tail series needs at its lags that does not depend on the model: the lags' pairs
+    (``owner``), their nearest arguments x₀, the series' scale S (the support's width) and ν_r / S^r,
+    r = 0 … R + 1, of each lag's pair (one row per r), so that a batch forms them once for every model."""
+
+    owner: np.ndarray
+    nearest: np.ndarray
+    scale: np.ndarray
+    moments: np.ndarray
+
+    @classmethod
+    def of(cls, pairs: _Pairs, owner: np.ndarray, nearest: np.ndarray) -> _FarTail:
+        width = pairs.width()
+        table = np.zeros((_NEWTON_TERMS + 2, len(pairs.m_i)))  # ν_r / S^r of each row, a row per order
+        for row in np.unique(owner).tolist():
+            table[:, row] = _factorial_moments(int(pairs.m_i[row]), int(pairs.m_j[row]), float(width[row]))
+        return cls(owner, nearest, width[owner], table[:, owner])
+
+
 def _newton_series(
-    pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, nearest: np.ndarray, bounds: bool = True
+    lag_model: LagModel, tail: _FarTail, bounds: bool = True
 ) -> tuple[np.ndarray, np.ndarray | None]:
-    """(c, bound on its error or None without ``bounds``) from Σ_{r≤R} ν_r Δ^r γ_z(x₀) at the nearest
-    arguments x₀ (far tail). Each step is formed in place in two buffers of the lags' length (the same
-    operations, in the same order, as the plain expressions)."""
-    d, width = lag_model.flicker_d, pairs.width()
-    rows = np.unique(owner)
-    table = np.zeros((_NEWTON_TERMS + 2, len(pairs.m_i)))  # ν_r / S^r of each row, one row of r per order
-    for row in rows.tolist():
-        table[:, row] = _factorial_moments(int(pairs.m_i[row]), int(pairs.m_j[row]), float(width[row]))
-    scale = width[owner]
+    """(c, bound on its error or None without ``bounds``) from Σ_{r≤R} ν_r Δ^r γ_z(x₀) at the far
+    tail's nearest arguments x₀. Each step is formed in place in two buffers of the lags' length (the
+    same operations, in the same order, as the plain expressions)."""
+    d, nearest, scale, moments = lag_model.flicker_d, tail.nearest, tail.scale, tail.moments
     shifted = nearest + 2.0 - d  # x₀ + 2 − d; the ratio's denominator is shifted + r
     total, term = np.zeros_like(nearest), flicker_increment_difference(nearest, d)
     product, denominator = np.empty_like(nearest), np.empty_like(nearest)
     for r in range(_NEWTON_TERMS + 1):
-        np.multiply(table[r][owner], term, out=product)
+        np.multiply(moments[r], term, out=product)
         total += product
         np.multiply(term, 2.0 * d - 3.0 - r, out=term)
         np.multiply(term, scale, out=term)
@@ -388,7 +403,7 @@ def _newton_series(
         return total, None
     order = _NEWTON_TERMS + 1
     difference = np.abs(flicker_increment_difference(nearest - order, d, order))
-    remainder = table[order][owner] * difference * scale**order
+    remainder = moments[order] * difference * scale**order
     return total, lag_model.flicker_variance * remainder
 
 
@@ -611,9 +626,11 @@ def _parted_values(
     parts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
     near_values: np.ndarray | None,
     bounds: bool = True,
+    tail: _FarTail | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """(c, bound on its error) by the partition ``parts`` of :func:`_partition`, the nine-term sums at its
-    near lags given; without ``bounds`` the error is not formed (an empty array)."""
+    near lags given (and the far lags' :class:`_FarTail`, or it is formed here); without ``bounds`` the
+    error is not formed (an empty array)."""
     nearest, far, direct, near = parts
     values, errors = np.empty(len(lags)), np.zeros(len(lags) if bounds else 0)
     if np.any(direct):
@@ -623,7 +640,8 @@ def _parted_values(
     if np.any(far):
         values[far], far_errors = 0.0, None  # the finite terms' c is exactly 0 there
         if lag_model.flicker_variance:
-            values[far], far_errors = _newton_series(pairs, lag_model, owner[far], nearest[far], bounds)
+            tail = _FarTail.of(pairs, owner[far], nearest[far]) if tail is None else tail
+            values[far], far_errors = _newton_series(lag_model, tail, bounds)
         if lag_model.modes is not None:
             values[far] += _modal_values(pairs, lag_model, owner[far], lags[far])[0]
         if far_errors is not None:
@@ -762,6 +780,18 @@ class PairBatch:
         return _tabulated_gather(self.pairs, self.lag_owner[near], self.lags[near])
 
     @functools.cached_property
+    def lag_tail(self) -> _FarTail:
+        """:class:`_FarTail` of the exact lags in the far tail."""
+        nearest, far = self.lag_parts[:2]
+        return _FarTail.of(self.pairs, self.lag_owner[far], nearest[far])
+
+    @functools.cached_property
+    def node_tail(self) -> _FarTail:
+        """:class:`_FarTail` of the Gauss nodes in the far tail."""
+        nearest, far = self.node_parts[:2]
+        return _FarTail.of(self.pairs, self.node_owner[far], nearest[far])
+
+    @functools.cached_property
     def node_parts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """:func:`_partition` of the Gauss nodes."""
         return _partition_for(self.pairs, self.node_owner, self.nodes, self.reach)
@@ -821,6 +851,7 @@ def term_values(batch: PairBatch, lag_model: LagModel, *, bounds: bool = True) -
         batch.lag_parts,
         batch.lag_gather.values(lag_model),
         bounds,
+        batch.lag_tail if lag_model.flicker_variance else None,
     )
     node_values, node_errors = _parted_values(
         pairs,
@@ -830,6 +861,7 @@ def term_values(batch: PairBatch, lag_model: LagModel, *, bounds: bool = True) -
         batch.node_parts,
         batch.node_gather.values(lag_model),
         bounds,
+        batch.node_tail if lag_model.flicker_variance else None,
     )
     derivative = (
         _derivative_bounds(pairs, lag_model, batch.block_owner, batch.block_ends, batch.rule.points)

@@ -61,6 +61,7 @@ import numpy as np
 import sympy as sp
 
 from carousel_theory import symbols
+from carousel_theory._validation import check_positive_integer
 from carousel_theory.increment_sums import flicker_increment_difference
 from carousel_theory.lag_quadrature import (
     PROVED_RULE,
@@ -366,6 +367,27 @@ def _lag_sum(memory: _LongMemory, m_i: int, m_j: int, K_i: int, K_j: int) -> tup
 # --- public ---------------------------------------------------------------------------------------
 
 
+def _checked_sizes(tau_samples: Any, length: Any) -> tuple[np.ndarray, int]:
+    """(the cluster sizes m as int64, the record length n) after checking them: n an integer ≥ 2, each m
+    an integer ≥ 1 with 2m ≤ n (two clusters of m samples at least)."""
+    length = check_positive_integer("length", length, minimum=2)
+    given = np.atleast_1d(np.asarray(tau_samples))
+    if given.ndim != 1 or not len(given):
+        raise ValueError(f"tau_samples={tau_samples!r}: must be a non-empty 1-D array of cluster sizes")
+    if given.dtype.kind not in "iu" and not (
+        given.dtype.kind == "f" and np.all(np.isfinite(given)) and np.all(given == np.rint(given))
+    ):
+        raise TypeError(f"tau_samples={tau_samples!r}: cluster sizes must be integers (samples per cluster)")
+    sizes = given.astype(np.int64)
+    if np.any(sizes < 1) or np.any(2 * sizes > length):
+        wrong = int(sizes[(sizes < 1) | (2 * sizes > length)][0])
+        raise ValueError(
+            f"tau_samples: m={wrong} is outside 1 … {length // 2}: a record of length={length} samples "
+            "holds two clusters of at most n/2 samples"
+        )
+    return sizes, length
+
+
 def _terms_count(sizes: np.ndarray, length: int, estimator: str) -> np.ndarray:
     return length - 2 * sizes + 1 if estimator == "overlapping" else length // sizes - 1
 
@@ -479,7 +501,7 @@ def allan_estimate_covariance(
     takes about half the time of the default where the values alone count (a fit's weights; the two
     rules' values compared: :mod:`carousel_theory.lag_quadrature`, module text: Rules).
     """
-    sizes = np.asarray(tau_samples, dtype=np.int64)
+    sizes, length = _checked_sizes(tau_samples, length)
     if estimator not in ("overlapping", "non-overlapping"):
         raise ValueError(f"estimator={estimator!r}: must be 'overlapping' or 'non-overlapping'")
     if not model.terms():
@@ -519,8 +541,10 @@ def allan_estimate_variance(
 ) -> np.ndarray:
     """Var σ̂²(m) at each m (the diagonal of :func:`allan_estimate_covariance`, without the other pairs;
     ``rule`` as there)."""
-    sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
-    terms = _terms_count(sizes, int(length), estimator)
+    sizes, length = _checked_sizes(tau_samples, length)
+    if estimator not in ("overlapping", "non-overlapping"):
+        raise ValueError(f"estimator={estimator!r}: must be 'overlapping' or 'non-overlapping'")
+    terms = _terms_count(sizes, length, estimator)
     order = np.argsort(sizes, kind="stable")
     diagonal = [(k, k) for k in range(len(sizes))]
     sums = _pair_sums(model, sizes[order], terms[order], int(length), estimator, diagonal, False, rule)

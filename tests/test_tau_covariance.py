@@ -321,6 +321,32 @@ def test_bad_calls():
         allan_estimate_covariance(MODELS["white"], [2, 3], 100, estimator="non-overlapping")
 
 
+@pytest.mark.parametrize("function", [allan_estimate_covariance, allan_estimate_variance])
+@pytest.mark.parametrize(
+    ("sizes", "length", "error", "message"),
+    [
+        ([1, 64], 100, ValueError, r"m=64 is outside 1 … 50: a record of length=100"),
+        ([0, 2], 100, ValueError, r"m=0 is outside 1 … 50"),
+        ([2.5], 100, TypeError, "cluster sizes must be integers"),
+        ([float("nan")], 100, TypeError, "cluster sizes must be integers"),
+        ([], 100, ValueError, "non-empty 1-D array"),
+        ([[1, 2]], 100, ValueError, "non-empty 1-D array"),
+        ([1, 2], 100.0, TypeError, r"length=100\.0: must be an integer"),
+        ([1], 1, ValueError, "length=1: must be an integer >= 2"),
+    ],
+)
+def test_cluster_sizes_the_record_cannot_hold_are_refused_by_name(function, sizes, length, error, message):
+    with pytest.raises(error, match=message):
+        function(MODELS["white"], sizes, length)
+
+
+def test_the_largest_cluster_size_a_record_holds_is_accepted():
+    # m = n/2: one overlapping term, one non-overlapping difference; Var = 2 σ_A⁴ for white noise
+    for estimator in ("overlapping", "non-overlapping"):
+        variance = allan_estimate_variance(MODELS["white"], [50], 100, estimator=estimator)
+        assert variance[0] == pytest.approx(2.0 * MODELS["white"].allan_variance(np.array([50]))[0] ** 2)
+
+
 def test_white_overlapping_closed_form_equals_the_engine():
     import sympy as sp
 
