@@ -2,7 +2,7 @@
 τ-covariance against the dense reference.
 
 Usage: ``python benchmarks/bench_fit_vs_allantools.py [--sizes 1000000 10000000] [--models white,rrw ...]
-[--records K] [--phi 0.8 0.95 ...] [--breakdown] [--seed S] [--fresh K] [--dense-size N]``
+[--records K] [--phi 0.8 0.95 ...] [--breakdown] [--seed S] [--fresh K [--repeat R]] [--dense-size N]``
 
 For each size a seeded axis of white + rate random walk + 1/f (d = 0.5) + first-order Gauss–Markov noise
 at 100 Hz is drawn (:func:`carousel_theory.simulate.sample_noise`). Timed, once each, in this process:
@@ -22,7 +22,9 @@ evaluations they take (each row shows them). With ``--breakdown`` each fit is ru
 time is split into the τ-covariances (the pairs' structure, the values at exact lags and Gauss nodes, the
 sums and the rest) and everything else. With ``--fresh K`` each model's first fit is timed instead in K new
 processes (records drawn with the seeds 2026, 2027, …), which is what a command-line fit of one axis pays
-after its imports; the median and the range of the K CPU ratios are printed. ``--dense-size 0`` skips the
+after its imports; the median and the range of the K CPU ratios are printed, and the ratios grouped by the
+covariance evaluations each fit took. ``--repeat R`` times each record's first fit in R processes and
+takes their median (a shared machine's interference only ever adds time). ``--dense-size 0`` skips the
 comparisons below.
 
 The fit weights its GLS with the lag quadrature's :data:`~carousel_theory.lag_plan.WEIGHTS_RULE`
@@ -213,18 +215,27 @@ def _fresh_processes(args: argparse.Namespace) -> None:
     """Each model's first fit in ``args.fresh`` new processes (a record each, seeds 2026, 2027, …): what a
     command-line fit of one axis pays. Prints the CPU ratios, their median and range."""
     for size, phi, text in itertools.product(args.sizes, args.phi, args.models):
-        ratios = []
+        ratios: dict[int, list[float]] = {}  # by the covariance evaluations the fit took
         for seed in range(2026, 2026 + args.fresh):
             command = [sys.executable, __file__, "--sizes", str(size), "--models", text, "--phi", str(phi)]
             command += ["--seed", str(seed), "--dense-size", "0"]
-            output = subprocess.run(command, capture_output=True, text=True, check=True).stdout
-            row = next(line for line in output.splitlines() if line.split()[:2] == [str(size), "1"])
-            ratios.append(float(row.split()[6]))
+            repeated = []  # the same record's first fit in ``args.repeat`` processes: their median
+            for _ in range(args.repeat):
+                output = subprocess.run(command, capture_output=True, text=True, check=True).stdout
+                row = next(line for line in output.splitlines() if line.split()[:2] == [str(size), "1"])
+                words = row.split()
+                repeated.append(float(words[6]))
+            ratios.setdefault(int(words[-2]), []).append(float(np.median(repeated)))
+        every = [ratio for group in ratios.values() for ratio in group]
         print(
             f"{size:>10} φ = {phi} {text:>22}: first fit of {args.fresh} fresh processes, CPU fit/allantools "
-            f"median {float(np.median(ratios)):.2f}, range {min(ratios):.2f}–{max(ratios):.2f} "
-            f"({', '.join(f'{r:.2f}' for r in ratios)})"
+            f"median {float(np.median(every)):.2f}, range {min(every):.2f}–{max(every):.2f}"
         )
+        for evaluations, group in sorted(ratios.items()):
+            print(
+                f"{'':>10} {evaluations} covariance evaluation(s), {len(group)} records: median "
+                f"{float(np.median(group)):.2f} ({', '.join(f'{r:.2f}' for r in group)})"
+            )
 
 
 def main() -> None:
@@ -246,6 +257,9 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=2026, help="seed of the drawn records")
     parser.add_argument(
         "--fresh", type=int, default=0, help="time each model's first fit in this many new processes instead"
+    )
+    parser.add_argument(
+        "--repeat", type=int, default=1, help="with --fresh: processes per record (their median is taken)"
     )
     args = parser.parse_args()
     if args.fresh:

@@ -63,6 +63,7 @@ from carousel_theory.noise_model import (
     RRW_ALLAN_VARIANCE,
     WHITE_ALLAN_VARIANCE,
     NoiseModel,
+    term_allan_variance,
 )
 from carousel_theory.processes import fractional_coefficients
 from carousel_theory.tau_covariance import allan_estimate_variance
@@ -369,6 +370,18 @@ def _second_difference_of_cumulative_psi(d: float, m: int, length: int) -> np.nd
     return G
 
 
+def _checked_difference(m: Any, length: Any) -> tuple[int, int]:
+    """(m, length) after checking them: integers, m ≥ 1, and 2m ≤ length (a cluster-sum difference)."""
+    length = check_positive_integer("length", length, minimum=2)
+    m = check_positive_integer("m", m)
+    if 2 * m > length:
+        raise ValueError(
+            f"m={m}: a difference of two cluster sums needs 2m samples; length={length} holds m <= "
+            f"{length // 2}"
+        )
+    return m, length
+
+
 def difference_covariance(
     noise: Any, m: int, lags: np.ndarray, length: int, sample_rate: float = 1.0
 ) -> np.ndarray:
@@ -377,7 +390,12 @@ def difference_covariance(
     ``noise`` is a noise-type name (unit driving variance) or a NoiseModel. The 1/f filter is truncated
     at ``length`` samples, which is exact for the last difference of a record of that length.
     """
-    lags = np.abs(np.asarray(lags, dtype=np.int64))
+    m, length = _checked_difference(m, length)
+    sample_rate = check_positive_real("sample_rate", sample_rate)
+    given = np.atleast_1d(np.asarray(lags))
+    if given.ndim != 1 or given.dtype.kind not in "iu":
+        raise TypeError(f"lags={lags!r}: must be a 1-D array of integer lags (samples)")
+    lags = np.abs(given.astype(np.int64))
     total = np.zeros(len(lags))
     for variance, taps in _component_filters(noise, m, length, sample_rate):
         if taps is None:  # white noise: the autocovariance of the ±1 taps in closed form
@@ -542,6 +560,9 @@ def equivalent_degrees_of_freedom(
     noise: Any, m: int, terms: int, stride: int, length: int, sample_rate: float = 1.0
 ) -> float:
     """ν = K² c(0)² / (K c(0)² + 2 Σ_{l=1}^{K−1} (K − l) c(l p)²) for K terms at stride p (Gaussian noise)."""
+    m, length = _checked_difference(m, length)
+    terms = check_positive_integer("terms", terms)
+    stride = check_positive_integer("stride", stride)
     if isinstance(noise, str) and noise == "white" and stride == 1:
         # c(l) = 2m − 3l (l ≤ m), l − 2m (m < l < 2m): the sum in exact integers by power sums, O(1).
         last = min(terms - 1, 2 * m - 1)
@@ -821,15 +842,20 @@ def model_allan_variance(
 ) -> np.ndarray:
     """Exact expected Allan variance of the discrete noise model at m = ``tau_samples`` samples.
 
-    Sum of the independent components: white σ²/m, rate random walk σ_q²(2m²+1)/(6m), quantization 3Q²/τ²
-    and 1/f (:func:`flicker_allan_variance`, which needs the record ``length``). The bias adds nothing.
+    Sum of the independent components: white σ²/m, rate random walk σ_q²(2m²+1)/(6m), quantization 3Q²/τ²,
+    the AR term (stationary: :func:`~carousel_theory.noise_model.term_allan_variance`) and 1/f
+    (:func:`flicker_allan_variance`, which needs the record ``length``). The bias adds nothing.
     """
-    for attribute in ("white_variance", "rrw_variance", "flicker_variance", "flicker_d", "quantization"):
-        if not hasattr(model, attribute):
-            raise TypeError(f"model={model!r}: must be a NoiseModel (missing {attribute!r})")
+    if not isinstance(model, NoiseModel):
+        raise TypeError(f"model={model!r}: must be a NoiseModel")
     sizes = _check_tau_samples(tau_samples, length)
+    estimator = _check_estimator(estimator)
     m = sizes.astype(np.float64)
     total = _white_numeric(float(model.white_variance), m) + _rrw_numeric(float(model.rrw_variance), m)
+    if model.ar_variance:
+        total = total + float(model.ar_variance) * term_allan_variance(
+            "ar", sizes, ar_coefficients=tuple(model.ar_coefficients)
+        )
     if model.quantization:
         total = total + _quantization_numeric(float(model.quantization), m, 1.0 / float(model.sample_rate))
     if model.flicker_variance:

@@ -61,7 +61,7 @@ from scipy.linalg import solve_toeplitz
 from scipy.ndimage import uniform_filter1d
 from scipy.optimize import nnls
 
-from carousel_theory._validation import check_finite_array, check_positive_integer
+from carousel_theory._validation import check_finite_array, check_positive_integer, check_positive_real
 from carousel_theory.noise_model import ar_autocovariance, ar_decay_lags, ar_long_run_variance, stationary_ar
 
 __all__ = [
@@ -93,7 +93,7 @@ THRESHOLD = 4.0
 
 def high_pass_window(sample_rate: float) -> int:
     """W = max(1001, 10 s) samples, odd: the centred moving average removed before the autocovariance."""
-    return max(1001, round(10 * float(sample_rate)) | 1)
+    return max(1001, round(10 * float(check_positive_real("sample_rate", sample_rate))) | 1)
 
 
 #: An AR(1) correlation time above W/this (W the high-pass window) is where the estimate is biased low:
@@ -144,15 +144,26 @@ class ShortNoiseEstimate:
 def yule_walker(x: Any, sample_rate: float, maximum_order: int) -> tuple[float, ...]:
     """AR coefficients by Yule–Walker on ``x`` with its slow part removed (module text); () for order 0."""
     check_positive_integer("maximum_order", maximum_order)
-    return _plain(*high_passed_autocovariance(x, sample_rate, maximum_order), maximum_order)
+    autocovariance, n = high_passed_autocovariance(x, sample_rate, maximum_order)
+    return _plain(autocovariance, _checked_order(n, maximum_order), maximum_order)
 
 
 def yule_walker_estimate(x: Any, sample_rate: float, maximum_order: int) -> ShortNoiseEstimate:
     """:func:`yule_walker` with the coefficients' covariance (:func:`coefficient_covariance`)."""
     check_positive_integer("maximum_order", maximum_order)
     autocovariance, n = high_passed_autocovariance(x, sample_rate, maximum_order)
-    coefficients = _plain(autocovariance, n, maximum_order)
+    coefficients = _plain(autocovariance, _checked_order(n, maximum_order), maximum_order)
     return _estimate(autocovariance, n, coefficients, PLAIN if coefficients else "", maximum_order)
+
+
+def _checked_order(n: int, maximum_order: int) -> int:
+    """``n`` after checking that a record of n samples can carry AR orders up to ``maximum_order``: at
+    most n/4 (each of the p lags the estimate reads must be averaged over many samples)."""
+    if maximum_order > n // 4:
+        raise ValueError(
+            f"maximum_order={maximum_order}: a record of {n} samples carries AR orders up to n/4 = {n // 4}"
+        )
+    return n
 
 
 def _plain(autocovariance: np.ndarray, n: int, maximum_order: int) -> tuple[float, ...]:
@@ -213,6 +224,7 @@ def short_noise_estimate(x: Any, sample_rate: float, maximum_order: int) -> Shor
     """:func:`short_noise_coefficients` with the estimator chosen and the coefficients' covariance."""
     check_positive_integer("maximum_order", maximum_order)
     autocovariance, n = high_passed_autocovariance(x, sample_rate, _beside_white_lags(maximum_order))
+    _checked_order(n, maximum_order)
     corrected = autocovariance
     coefficients, estimator = _closer(autocovariance, n, maximum_order)
     for _ in range(OFFSET_ROUNDS):

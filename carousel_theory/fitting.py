@@ -102,7 +102,7 @@ from carousel_theory.increment_sums import squared_rising_factorial_sum
 from carousel_theory.lag_plan import WEIGHTS_RULE
 from carousel_theory.noise_model import NoiseModel, check_ar_coefficients, term_allan_variance
 from carousel_theory.progress import progress
-from carousel_theory.signal_checks import check_noise_signal, check_recording_signals
+from carousel_theory.signal_checks import UnusableSignalError, check_noise_signal, check_recording_signals
 from carousel_theory.tau_covariance import allan_estimate_covariance
 
 __all__ = [
@@ -571,6 +571,14 @@ def _used_mask(observed: ObservedAllan, options: FitOptions) -> np.ndarray:
             f"{options.components + (('flicker_d',) if _fits_d(options) else ())}; the recording "
             f"({observed.length} samples) is too short or tau_range too narrow"
         )
+    if np.any(allan.avar[used] <= 0):
+        index = int(np.flatnonzero(used & (allan.avar <= 0))[0])
+        raise UnusableSignalError(
+            f"y: the Allan variance is 0 at τ = {allan.tau[index]:.4g} s (m = "
+            f"{int(allan.samples_per_cluster[index])} samples); a noise model needs a positive Allan "
+            "variance at every τ it fits (a record that repeats itself every m samples has none): check the "
+            "recording or narrow tau_range"
+        )
     return used
 
 
@@ -736,6 +744,7 @@ def _solved(
     (:func:`carousel_theory.autoregression.correlation_is_long`) and the χ² rejects the fit at
     AR_REFINED_LEVEL, the coefficient is refined by the GLS χ² and the fit solved again with it
     (:func:`_profiled_ar`, module text)."""
+    _check_fixed_covariance(fixed_covariance, len(problem.observed))
     solution = _solve(problem, start_d, options, fixed_covariance)
     long = short.estimator not in ("", "given") and correlation_is_long(
         short.coefficients, problem.sample_rate, AR_REFINED_FRACTION
@@ -981,6 +990,25 @@ def order_interval(fit: FitResult, level: float = 0.95) -> tuple[float, float]:
     lower = grid[first] if first == 0 else brentq(excess, grid[first - 1], grid[first], xtol=1e-4)
     upper = grid[last] if last == len(grid) - 1 else brentq(excess, grid[last], grid[last + 1], xtol=1e-4)
     return float(lower), float(upper)
+
+
+def _check_fixed_covariance(covariance: Any, size: int) -> None:
+    """Refuse a ``fixed_covariance`` that is not a finite, symmetric, positive definite size × size array
+    (None: the fit's own, nothing to check)."""
+    if covariance is None:
+        return
+    matrix = np.asarray(covariance)
+    if matrix.shape != (size, size) or matrix.dtype.kind not in "fiu":
+        raise ValueError(
+            f"fixed_covariance: shape {matrix.shape}; must be a ({size}, {size}) array of numbers, one row "
+            "and column per τ the fit uses"
+        )
+    if not np.all(np.isfinite(matrix)) or not np.array_equal(matrix, matrix.T):
+        raise ValueError("fixed_covariance: must be finite and symmetric")
+    try:
+        np.linalg.cholesky(matrix)
+    except np.linalg.LinAlgError:
+        raise ValueError("fixed_covariance: must be positive definite (a covariance across τ)") from None
 
 
 def _problem_of(fit: FitResult) -> _Problem:

@@ -47,7 +47,12 @@ import sympy as sp
 from scipy import linalg
 
 from carousel_theory import symbols, units
-from carousel_theory._validation import check_fractional_order, check_positive_real, check_real
+from carousel_theory._validation import (
+    check_fractional_order,
+    check_positive_integer,
+    check_positive_real,
+    check_real,
+)
 from carousel_theory.increment_sums import (
     allan_variance_from_fourth_sum,
     finite_fourth_sum,
@@ -137,6 +142,11 @@ class NoiseModel:
             check_positive_real(name, getattr(self, name), allow_zero=True)
         check_fractional_order("flicker_d", self.flicker_d)
         check_ar_coefficients(self.ar_coefficients)
+        if self.ar_variance and not self.ar_coefficients:
+            raise ValueError(
+                f"ar_variance={self.ar_variance!r}: an AR term needs ar_coefficients (AR(0) is white noise: "
+                "use white_variance)"
+            )
 
     # --- the terms ----------------------------------------------------------------------------------
     def terms(self) -> dict[str, float]:
@@ -188,7 +198,7 @@ class NoiseModel:
 
     def allan_variance(self, tau_samples: Any) -> np.ndarray:
         """Exact Allan variance (stationary differences) of the model at m = ``tau_samples`` samples."""
-        sizes = np.atleast_1d(np.asarray(tau_samples, dtype=np.int64))
+        sizes = cluster_sizes(tau_samples)
         total = np.zeros(len(sizes))
         for term, variance in self.terms().items():
             total += variance * term_allan_variance(term, sizes, self.flicker_d, self.ar_coefficients)
@@ -279,12 +289,18 @@ def check_ar_coefficients(coefficients: Any) -> None:
 
 def stationary_ar(coefficients: tuple[float, ...]) -> bool:
     """Every root of 1 − Σ φ_j z^j outside the unit circle (() is white noise: stationary)."""
+    if not isinstance(coefficients, tuple):
+        raise TypeError(f"ar_coefficients={coefficients!r}: must be a tuple of floats")
+    if not all(math.isfinite(check_real(f"ar_coefficients[{j}]", c)) for j, c in enumerate(coefficients)):
+        raise ValueError(f"ar_coefficients={coefficients!r}: must be finite")
     return not coefficients or _slowest_root(tuple(coefficients)) < 1.0
 
 
 def ar_long_run_variance(variance: float, coefficients: tuple[float, ...]) -> float:
     """σ²/(1 − Σ φ_j)²: the long-run variance of the AR process of innovation variance σ² (the white-noise
     variance that long averages of it see)."""
+    check_positive_real("variance", variance, allow_zero=True)
+    check_ar_coefficients(coefficients)
     return float(variance) / (1.0 - sum(coefficients)) ** 2
 
 
@@ -354,6 +370,9 @@ def ar_increment_reach(coefficients: tuple[float, ...]) -> int:
 def ar_decay_lags(coefficients: tuple[float, ...]) -> int:
     """⌊log AR_TRUNCATION / log ρ⌋: the lags after which ρ^k, the AR autocovariance's slowest decay, is
     below ``AR_TRUNCATION`` (0 when ρ = 0)."""
+    check_ar_coefficients(coefficients)
+    if not coefficients:
+        raise ValueError("ar_coefficients=(): an AR term needs at least one coefficient")
     rho = _slowest_root(coefficients)
     return 0 if rho == 0 else int(math.log(AR_TRUNCATION) / math.log(rho))
 
@@ -394,7 +413,8 @@ def _flicker_increment_autocovariance(d: float, lags: int) -> np.ndarray:
 def unit_flicker_increment_autocovariance(flicker_d: float, lags: int) -> np.ndarray:
     """γ_z(k), k = 0 … lags − 1, of the 1/f term at unit σ_w²: the read-only array shared by every caller
     with the same (d, lags), held once per process (a long record's fits reuse it)."""
-    return _flicker_increment_autocovariance(float(flicker_d), int(lags))
+    check_fractional_order("flicker_d", flicker_d)
+    return _flicker_increment_autocovariance(float(flicker_d), check_positive_integer("lags", lags))
 
 
 def increment_autocovariance(
@@ -404,6 +424,8 @@ def increment_autocovariance(
 
     (Quantization at unit variance of its rate f_s·a_t.) See the module text for each term.
     """
+    lags = check_positive_integer("lags", lags)
+    _check_term(term, flicker_d, ar_coefficients)
     gamma = np.zeros(lags)
     if term == "white":
         gamma[:2] = (2.0, -1.0)[: min(lags, 2)]
@@ -430,6 +452,9 @@ def spectral_density(
     white 1; rate random walk 1/|1 − e^{−iω}|² (eq. (2)); 1/f |1 − e^{−iω}|^{−2d} (eq. (3));
     quantization |1 − e^{−iω}|²; AR 1/|1 − Σ φ_j e^{−ijω}|².
     """
+    _check_term(term, flicker_d, ar_coefficients)
+    if not np.all(np.isfinite(np.asarray(omega, dtype=np.float64))):
+        raise ValueError(f"omega={omega!r}: angular frequencies must be finite")
     difference = 4.0 * np.sin(np.asarray(omega) / 2.0) ** 2  # |1 − e^{−iω}|²
     with np.errstate(divide="ignore"):
         if term == "white":
@@ -449,12 +474,20 @@ def spectral_density(
 
 def variogram(increment_covariance: np.ndarray) -> np.ndarray:
     """D(h) = Σ_{|k|<h} (h − |k|) γ_z(k), h = 0 … len(γ_z): each step adds γ_z(0) + 2 Σ_{0<k<h} γ_z(k)."""
+    if not len(increment_covariance):
+        raise ValueError("increment_covariance: must hold γ_z(0) at least (an empty array was given)")
     steps = increment_covariance[0] + 2.0 * np.concatenate(([0.0], np.cumsum(increment_covariance[1:])))
     return np.concatenate(([0.0], np.cumsum(steps)))
 
 
 def allan_variance_from_increments(increment_covariance: np.ndarray, sizes: np.ndarray) -> np.ndarray:
     """σ_A²(m) = Σ_{|j|<m} (m − |j|) [D(|m + j|) − D(|j|)] / (2m²) from γ_z(0 … 2m − 1) (module text)."""
+    sizes = cluster_sizes(sizes)
+    if len(increment_covariance) < 2 * int(np.max(sizes)):
+        raise ValueError(
+            f"increment_covariance: holds {len(increment_covariance)} lags; m={int(np.max(sizes))} needs "
+            f"γ_z(0 … 2m − 1), {2 * int(np.max(sizes))} lags"
+        )
     D = variogram(increment_covariance[: 2 * int(np.max(sizes))])
     result = np.empty(len(sizes))
     for i, m in enumerate(int(value) for value in sizes):
@@ -469,6 +502,33 @@ def allan_variance_from_increments(increment_covariance: np.ndarray, sizes: np.n
     return result
 
 
+def cluster_sizes(sizes: Any) -> np.ndarray:
+    """``sizes`` as a 1-D int64 array after checking them: integers (or integral floats), each ≥ 1."""
+    given = np.atleast_1d(np.asarray(sizes))
+    if given.ndim != 1 or not len(given):
+        raise ValueError(f"sizes={sizes!r}: must be a non-empty 1-D array of cluster sizes (samples)")
+    if given.dtype.kind not in "iu" and not (
+        given.dtype.kind == "f" and np.all(np.isfinite(given)) and np.all(given == np.rint(given))
+    ):
+        raise TypeError(f"sizes={sizes!r}: cluster sizes must be integers (samples per cluster)")
+    if np.min(given) < 1:
+        raise ValueError(f"sizes={sizes!r}: every cluster size must be >= 1 sample")
+    return given.astype(np.int64)
+
+
+def _check_term(term: str, flicker_d: Any, ar_coefficients: Any) -> None:
+    """Refuse an unknown term, a 1/f order outside 0 < d < 1, and AR coefficients that are not a
+    non-empty stationary tuple for the AR term."""
+    if term not in TERMS:
+        raise ValueError(f"term={term!r}: must be one of {TERMS}")
+    if term == "flicker":
+        check_fractional_order("flicker_d", flicker_d)
+    if term == "ar":
+        check_ar_coefficients(ar_coefficients)
+        if not ar_coefficients:
+            raise ValueError("ar_coefficients=(): the AR term needs at least one coefficient")
+
+
 def term_allan_variance(
     term: str, sizes: Any, flicker_d: float = 0.5, ar_coefficients: tuple[float, ...] = ()
 ) -> np.ndarray:
@@ -478,7 +538,8 @@ def term_allan_variance(
     sum of its increment autocovariance and AR from the fourth sum of its finite γ_z
     (:mod:`carousel_theory.increment_sums`), O(1) per τ.
     """
-    m = np.atleast_1d(np.asarray(sizes, dtype=np.int64))
+    m = cluster_sizes(sizes)
+    _check_term(term, flicker_d, ar_coefficients)
     if term == "white":
         return np.asarray(_white_numeric(1.0, m.astype(np.float64)), dtype=np.float64)
     if term == "rrw":

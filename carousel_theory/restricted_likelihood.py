@@ -40,13 +40,14 @@ import itertools
 import math
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
-from typing import cast
+from typing import Any, cast
 
 import numpy as np
 
-from carousel_theory._validation import check_finite_array, check_fractional_order, check_real
+from carousel_theory._validation import check_boolean, check_finite_array, check_fractional_order, check_real
 from carousel_theory.generalized_schur import whiten
 from carousel_theory.progress import progress
+from carousel_theory.signal_checks import check_noise_signal
 
 __all__ = ["VarianceEstimate", "estimate_noise_variances", "restricted_log_likelihood"]
 
@@ -116,10 +117,18 @@ def _check_sections(sections: np.ndarray) -> np.ndarray:
     check_finite_array("sections", data.reshape(-1))
     if data.shape[1] < 3:
         raise ValueError(f"sections: must hold at least 3 samples each, got {data.shape[1]}")
+    for index, section in enumerate(data):  # varies, and its variances fit in float64
+        check_noise_signal(section, f"sections[{index}]")
     return data
 
 
 def _check_bounds(name: str, bounds: tuple[float, float], low_limit: float, high_limit: float):
+    if isinstance(bounds, (str, bytes)) or not hasattr(bounds, "__len__") or len(bounds) != 2:
+        raise ValueError(f"{name}={bounds!r}: must be a pair (low, high)")
+    return _ordered_bounds(name, bounds, low_limit, high_limit)
+
+
+def _ordered_bounds(name: str, bounds: tuple[float, float], low_limit: float, high_limit: float):
     low, high = (float(check_real(name, value)) for value in bounds)
     if not low_limit <= low < high <= high_limit:
         raise ValueError(f"{name}={bounds!r}: must satisfy {low_limit} <= low < high <= {high_limit}")
@@ -399,6 +408,21 @@ def _first_step(data: np.ndarray) -> float:
     return min(max(step, _FIRST_STEP_LIMITS[0]), _FIRST_STEP_LIMITS[1])
 
 
+def _order_limits(d: float, d_bounds: tuple[float, float]) -> tuple[float, float]:
+    """The d search range ``d_bounds``, checked: strictly inside (0, 1)."""
+    limits = _check_bounds("d_bounds", d_bounds, 0.0, 1.0)
+    if not (limits[0] > 0.0 and limits[1] < 1.0):
+        raise ValueError(f"d_bounds={d_bounds!r}: must lie strictly inside (0, 1)")
+    return limits
+
+
+def _check_flags(estimate_d: Any, show_progress: Any) -> None:
+    """``estimate_d`` True or False; ``show_progress`` True, False or None (on a terminal)."""
+    check_boolean("estimate_d", estimate_d)
+    if show_progress is not None:
+        check_boolean("show_progress", show_progress)
+
+
 def estimate_noise_variances(
     sections: np.ndarray,
     d: float = 0.5,
@@ -418,11 +442,10 @@ def estimate_noise_variances(
     tick per likelihood evaluation, is shown on a terminal (``show_progress=None``) or as asked.
     """
     data = _check_sections(sections)
+    _check_flags(estimate_d, show_progress)
     d = float(check_fractional_order("d", d))
     log_bounds = _check_ratio_bounds(ratio_bounds)
-    d_limits = _check_bounds("d_bounds", d_bounds, 0.0, 1.0) if estimate_d else (d, d)
-    if estimate_d and not (d_limits[0] > 0.0 and d_limits[1] < 1.0):
-        raise ValueError(f"d_bounds={d_bounds!r}: must lie strictly inside (0, 1)")
+    d_limits = _order_limits(d, d_bounds) if estimate_d else (d, d)
     ticks = cast(
         Generator[int, None, None],
         progress(itertools.count(), label="REML evaluations", enabled=show_progress),

@@ -17,6 +17,7 @@ from conftest import Z_MONTE_CARLO
 from carousel_theory import allan
 from carousel_theory.allan import (
     allan_variance,
+    difference_covariance,
     equivalent_degrees_of_freedom,
     flicker_allan_variance,
     graycode_allan_variance,
@@ -309,6 +310,40 @@ INVALID = [
     ("flicker-over-third", lambda: flicker_allan_variance(0.3, np.array([4]), 10), ValueError, "a third"),
     ("octave-length", lambda: octave_cluster_sizes(2), ValueError, "length=2"),
     ("graycode-n", lambda: graycode_allan_variance(1, 0), ValueError, "n=1"),
+    (
+        "model-estimator",
+        lambda: model_allan_variance(_MODEL, [2], estimator="x"),
+        ValueError,
+        "estimator='x'",
+    ),
+    ("edf-m-zero", lambda: equivalent_degrees_of_freedom("white", 0, 10, 1, 100), ValueError, "m=0"),
+    ("edf-terms-zero", lambda: equivalent_degrees_of_freedom("white", 2, 0, 1, 100), ValueError, "terms=0"),
+    (
+        "edf-stride-zero",
+        lambda: equivalent_degrees_of_freedom("white", 2, 10, 0, 100),
+        ValueError,
+        "stride=0",
+    ),
+    ("edf-m-fraction", lambda: equivalent_degrees_of_freedom("white", 2.5, 10, 1, 100), TypeError, "m=2.5"),
+    (
+        "edf-m-long",
+        lambda: equivalent_degrees_of_freedom("white", 60, 10, 1, 100),
+        ValueError,
+        "m=60.*m <= 50",
+    ),
+    ("difference-m-zero", lambda: difference_covariance("white", 0, np.arange(3), 100), ValueError, "m=0"),
+    (
+        "difference-nan-lag",
+        lambda: difference_covariance("white", 2, np.array([np.nan]), 100),
+        TypeError,
+        "lags",
+    ),
+    (
+        "difference-rate",
+        lambda: difference_covariance("white", 2, np.arange(3), 100, 0.0),
+        ValueError,
+        "rate=0.0",
+    ),
 ]
 
 
@@ -377,3 +412,17 @@ def test_overlapping_octave_equals_allantools_across_chunk_boundaries(length):
     ours = allan_variance(y, 1.0)
     peer = allantools.oadev(y, rate=1.0, data_type="freq", taus=ours.tau)[1] ** 2
     np.testing.assert_allclose(ours.avar, peer, rtol=1e-12)
+
+
+@pytest.mark.parametrize("coefficients", [(0.5,), (0.9,), (1.2, -0.5)])
+def test_model_allan_variance_holds_the_ar_term(coefficients):
+    """The AR term's Allan variance by the fourth sum (``model_allan_variance`` and ``NoiseModel``) against
+    the O(m) variogram sum of its increment autocovariance, a second way."""
+    from carousel_theory.noise_model import allan_variance_from_increments, increment_autocovariance
+
+    model = NoiseModel(sample_rate=1.0, white_variance=0.3, ar_variance=2.0, ar_coefficients=coefficients)
+    sizes = np.array([1, 2, 4, 16, 64])
+    gamma = increment_autocovariance("ar", 2 * int(sizes.max()), ar_coefficients=coefficients)
+    expected = 2.0 * allan_variance_from_increments(gamma, sizes) + 0.3 / sizes
+    np.testing.assert_allclose(model_allan_variance(model, sizes), expected, rtol=1e-12)
+    np.testing.assert_allclose(model.allan_variance(sizes), expected, rtol=1e-12)

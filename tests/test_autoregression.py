@@ -143,3 +143,18 @@ def test_the_fit_benchmark_model_is_not_rejected():
     assert result.p_value > 1e-3
     error = result.standard_errors["white_variance"]
     assert abs(result.model.white_variance - truth.white_variance) <= Z * error
+
+
+@pytest.mark.parametrize("estimator", [yule_walker, short_noise_coefficients])
+def test_an_order_the_record_cannot_carry_is_refused_at_once(estimator):
+    record = np.random.default_rng(5).standard_normal(2000)
+    with pytest.raises(ValueError, match=r"maximum_order=5000: a record of 2000 samples .* n/4 = 500"):
+        estimator(record, 100.0, 5000)
+
+
+@pytest.mark.parametrize("rate", [0.0, -1.0, float("nan")])
+def test_the_high_pass_needs_a_sample_rate(rate):
+    from carousel_theory.autoregression import high_pass_window
+
+    with pytest.raises(ValueError, match="sample_rate="):
+        high_pass_window(rate)

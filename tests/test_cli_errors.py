@@ -176,3 +176,18 @@ def test_issue13_point14_internal_numerical_texts_become_a_user_level_failure(er
     status, message = classify(error)
     assert status == FAILURE
     assert str(error) not in message and "--debug" in message
+
+
+@pytest.mark.parametrize("value", ["-1", "x"])
+def test_a_seed_that_is_not_a_non_negative_integer_is_refused_by_name(tmp_path, capsys, value):
+    out = tmp_path / "o.csv"
+    with pytest.raises(SystemExit) as raised:
+        main(["simulate", str(out), "--seed", value])
+    assert raised.value.code == BAD_INPUT
+    assert f"argument --seed: '{value}': must be an integer >= 0" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_a_division_by_zero_in_set_is_bad_input_named(capsys):
+    assert main(["formula", "white_average_var", "--set", "N=1/0"]) == BAD_INPUT
+    assert "--set N='1/0': division by zero" in capsys.readouterr().err

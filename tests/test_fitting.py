@@ -13,6 +13,7 @@ from conftest import GYRO_MODEL, Z_MONTE_CARLO
 from carousel_theory import fitting
 from carousel_theory.fitting import FitResult, NoiseModel, fit_noise_model
 from carousel_theory.processes import covariance_matrix, sample_flicker
+from carousel_theory.signal_checks import UnusableSignalError
 
 
 def test_noise_model_units_worked_by_hand():
@@ -305,6 +306,30 @@ BAD_OPTIONS = [
 def test_bad_options(options, error, message):
     with pytest.raises(error, match=message):
         FitOptions(**options)
+
+
+@pytest.mark.parametrize("record", [np.tile([1.0, -1.0], 500), np.tile([True, False], 500)])
+def test_a_record_with_no_allan_variance_at_some_tau_is_refused_by_name(record):
+    # every pair of samples sums to the same value: the Allan variance is exactly 0 from τ = 2 samples on
+    with pytest.raises(UnusableSignalError, match=r"Allan variance is 0 at τ = 2 s \(m = 2"):
+        fit_noise_model(record, 1.0)
+
+
+@pytest.mark.parametrize(
+    ("covariance", "message"),
+    [
+        (np.eye(3), r"shape \(3, 3\); must be a \(11, 11\)"),
+        (np.ones(11), r"shape \(11,\)"),
+        (-np.eye(11), "positive definite"),
+        (np.where(np.eye(11) > 0, np.inf, 0.0), "finite and symmetric"),
+        (np.triu(np.ones((11, 11))), "finite and symmetric"),
+        ("x", r"shape \(\)"),
+    ],
+)
+def test_a_fixed_covariance_that_is_not_one_is_refused(covariance, message):
+    observed = observe_allan(np.random.default_rng(3).standard_normal(5000), 1.0)
+    with pytest.raises(ValueError, match=message):
+        fitting.fit_observed(observed, fitting.FitOptions(), fixed_covariance=covariance)
 
 
 def test_nested_test_refuses_a_term_not_fitted():

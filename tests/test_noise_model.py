@@ -20,6 +20,7 @@ from carousel_theory.noise_model import (
     increment_autocovariance,
     spectral_density,
     term_allan_variance,
+    unit_flicker_increment_autocovariance,
 )
 
 EXACT_INCREMENTS = {"white": {0: 2, 1: -1}, "rrw": {0: 1}, "quantization": {0: 6, 1: -4, 2: 1}}
@@ -197,6 +198,7 @@ BAD_MODELS = [
     ("ar-explosive", {"ar_coefficients": (0.5, 0.6)}, "stationary"),
     ("ar-text", {"ar_coefficients": ("a",)}, "ar_coefficients"),
     ("negative-ar-variance", {"ar_variance": -2.0}, "ar_variance=-2.0"),
+    ("ar-without-coefficients", {"ar_variance": 1.0}, r"ar_variance=1.0: an AR term needs ar_coefficients"),
     ("rate", {"sample_rate": 0.0}, "sample_rate=0.0"),
 ]
 
@@ -205,6 +207,61 @@ BAD_MODELS = [
 def test_bad_models_are_refused(options, message):
     with pytest.raises((ValueError, TypeError), match=message):
         NoiseModel(**{"sample_rate": 1.0, **options})
+
+
+BAD_TERM_CALLS = [
+    ("size-zero", lambda: term_allan_variance("white", [0]), ValueError, ">= 1 sample"),
+    ("size-negative", lambda: term_allan_variance("white", [-2]), ValueError, ">= 1 sample"),
+    ("size-fraction", lambda: term_allan_variance("white", [2.5]), TypeError, "must be integers"),
+    ("size-nan", lambda: term_allan_variance("white", [np.nan]), TypeError, "must be integers"),
+    ("size-empty", lambda: term_allan_variance("white", []), ValueError, "non-empty 1-D"),
+    ("model-size-zero", lambda: NoiseModel(1.0, white_variance=1.0).allan_variance([0]), ValueError, ">= 1"),
+    ("d-above", lambda: term_allan_variance("flicker", [2], flicker_d=1.5), ValueError, "flicker_d=1.5"),
+    ("d-nan", lambda: term_allan_variance("flicker", [2], flicker_d=np.nan), ValueError, "flicker_d=nan"),
+    ("ar-none", lambda: term_allan_variance("ar", [2]), ValueError, "at least one coefficient"),
+    (
+        "ar-unit-root",
+        lambda: increment_autocovariance("ar", 5, ar_coefficients=(1.5,)),
+        ValueError,
+        "stationary",
+    ),
+    (
+        "increment-d",
+        lambda: increment_autocovariance("flicker", 5, flicker_d=1.5),
+        ValueError,
+        "flicker_d=1.5",
+    ),
+    ("increment-lags", lambda: increment_autocovariance("white", 2.5), TypeError, "lags=2.5"),
+    ("unit-flicker-lags", lambda: unit_flicker_increment_autocovariance(0.5, 0), ValueError, "lags=0"),
+    ("unit-flicker-d", lambda: unit_flicker_increment_autocovariance(1.0, 5), ValueError, "flicker_d=1.0"),
+    ("spectrum-d", lambda: spectral_density("flicker", np.array([0.1]), flicker_d=1.5), ValueError, "1.5"),
+    ("spectrum-nan", lambda: spectral_density("white", np.array([np.nan])), ValueError, "must be finite"),
+    ("decay-unit-root", lambda: noise_model.ar_decay_lags((1.0,)), ValueError, "stationary"),
+    ("decay-empty", lambda: noise_model.ar_decay_lags(()), ValueError, "at least one coefficient"),
+    (
+        "long-run-negative",
+        lambda: noise_model.ar_long_run_variance(-1.0, (0.5,)),
+        ValueError,
+        "variance=-1.0",
+    ),
+    (
+        "long-run-explosive",
+        lambda: noise_model.ar_long_run_variance(1.0, (0.6, 0.6)),
+        ValueError,
+        "stationary",
+    ),
+    ("stationary-nan", lambda: noise_model.stationary_ar((np.nan,)), ValueError, "ar_coefficients"),
+    ("stationary-none", lambda: noise_model.stationary_ar(None), TypeError, "must be a tuple"),
+    ("variogram-empty", lambda: noise_model.variogram(np.array([])), ValueError, "γ_z"),
+]
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"), [b[1:] for b in BAD_TERM_CALLS], ids=[b[0] for b in BAD_TERM_CALLS]
+)
+def test_bad_term_arguments_are_refused_by_name(call, error, message):
+    with pytest.raises(error, match=message):
+        call()
 
 
 def test_unknown_term_is_refused():

@@ -74,25 +74,38 @@ def test_reml_with_estimated_order_maximises_the_dense_likelihood_in_d_too():
         assert moved.log_likelihood < estimate.log_likelihood
 
 
+_NOISY = np.random.default_rng(0).standard_normal((2, 5))
+
 INVALID = [
-    ("one_dimensional", lambda: estimate_noise_variances(np.ones(10)), ValueError),
-    ("nan", lambda: estimate_noise_variances(np.array([[1.0, np.nan, 2.0]])), ValueError),
-    ("too_short", lambda: estimate_noise_variances(np.ones((2, 2))), ValueError),
-    ("d_one", lambda: estimate_noise_variances(np.ones((2, 5)), 1.0), ValueError),
-    ("bounds_reversed", lambda: estimate_noise_variances(np.ones((2, 5)), 0.5, (2.0, 1.0)), ValueError),
-    ("bounds_zero", lambda: estimate_noise_variances(np.ones((2, 5)), 0.5, (0.0, 1.0)), ValueError),
+    ("one_dimensional", lambda: estimate_noise_variances(np.ones(10)), ValueError, "2-dimensional"),
+    ("nan", lambda: estimate_noise_variances(np.array([[1.0, np.nan, 2.0]])), ValueError, "nan"),
+    ("too_short", lambda: estimate_noise_variances(_NOISY[:, :2]), ValueError, "at least 3 samples"),
+    ("constant", lambda: estimate_noise_variances(np.ones((2, 5))), ValueError, r"sections\[0\]: constant"),
+    ("huge", lambda: estimate_noise_variances(1e200 * _NOISY), ValueError, r"within ±1e\+60"),
+    ("d_one", lambda: estimate_noise_variances(_NOISY, 1.0), ValueError, "d=1.0"),
+    ("bounds_reversed", lambda: estimate_noise_variances(_NOISY, 0.5, (2.0, 1.0)), ValueError, "low < high"),
+    ("bounds_zero", lambda: estimate_noise_variances(_NOISY, 0.5, (0.0, 1.0)), ValueError, "0 < low"),
+    ("bounds_three", lambda: estimate_noise_variances(_NOISY, 0.5, (1, 2, 3)), ValueError, "a pair"),
+    ("estimate_d_int", lambda: estimate_noise_variances(_NOISY, estimate_d=1), TypeError, "estimate_d=1"),
+    ("progress_int", lambda: estimate_noise_variances(_NOISY, show_progress=1), TypeError, "show_progress=1"),
     (
         "d_bounds_outside",
-        lambda: estimate_noise_variances(np.ones((2, 5)), 0.5, estimate_d=True, d_bounds=(0.0, 1.0)),
+        lambda: estimate_noise_variances(_NOISY, 0.5, estimate_d=True, d_bounds=(0.0, 1.0)),
         ValueError,
+        "d_bounds=",
     ),
-    ("likelihood_white_zero", lambda: restricted_log_likelihood(np.ones((2, 5)), 0.5, 1.0, 0.0), ValueError),
+    (
+        "likelihood_white_zero",
+        lambda: restricted_log_likelihood(_NOISY, 0.5, 1.0, 0.0),
+        ValueError,
+        "white_variance=0.0",
+    ),
 ]
 
 
-@pytest.mark.parametrize(("call", "error"), [(c, e) for _, c, e in INVALID], ids=[i for i, _, _ in INVALID])
-def test_invalid_arguments_are_refused(call, error):
-    with pytest.raises(error):
+@pytest.mark.parametrize(("call", "error", "message"), [c[1:] for c in INVALID], ids=[c[0] for c in INVALID])
+def test_invalid_arguments_are_refused(call, error, message):
+    with pytest.raises(error, match=message):
         call()
 
 

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from carousel_theory.cli._arguments import seed
 from carousel_theory.design import (
     DesignSettings,
     SchemeResult,
@@ -93,7 +94,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--json", action="store_true", help="print the result as JSON")
     parser.add_argument("--plot", type=Path, metavar="FILE.png", help="plot heading σ against duration")
     parser.add_argument("--monte-carlo", type=int, metavar="R", help="also R seeded atan2 draws per result")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the Monte Carlo (default 0)")
+    parser.add_argument("--seed", type=seed, default=0, help="seed of the Monte Carlo (default 0)")
     errors = parser.add_argument_group("imperfections")
     for flag, (_, text) in _IMPERFECTIONS.items():
         errors.add_argument(flag, type=int if flag == "--wobble-harmonic" else float, help=text)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from carousel_theory.cli._arguments import seed
 from carousel_theory.figures import DEFAULT_REALISATIONS, DEFAULT_SEED, FIGURES, write_figures
 from carousel_theory.output_files import plan_outputs
 
@@ -27,7 +28,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "a run estimated over 60 s needs --force)",
     )
     parser.add_argument(
-        "--seed", type=int, default=DEFAULT_SEED, help=f"random seed (default: {DEFAULT_SEED})"
+        "--seed", type=seed, default=DEFAULT_SEED, help=f"random seed (default: {DEFAULT_SEED})"
     )
     parser.add_argument(
         "--only", nargs="+", metavar="NAME", choices=sorted(FIGURES), help="only these figures"

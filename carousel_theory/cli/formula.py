@@ -92,6 +92,8 @@ def parse_exact_number(key: str, text: str) -> sp.Rational:
     """``200`` → 200, ``1/2`` → 1/2, ``0.3`` → 3/10, ``1e6`` → 10⁶; anything else is a ValueError."""
     try:
         value = sp.Rational(text.strip())
+    except ZeroDivisionError:
+        raise ValueError(f"--set {key}={text!r}: division by zero") from None
     except (TypeError, ValueError, SyntaxError):
         raise ValueError(
             f"--set {key}={text!r}: must be an integer, a fraction like 1/2 or a decimal like 0.3"

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from carousel_theory._validation import check_fractional_order, check_positive_integer, check_positive_real
+from carousel_theory.cli._arguments import seed
 from carousel_theory.cli._files import write_or_compare
 from carousel_theory.cli._output_units import OutputUnits, add_output_units_option, output_units
 from carousel_theory.cli._recording_options import add_reader_options, reader_keywords, reader_options_given
@@ -78,7 +79,7 @@ def _add_table1_options(parser: argparse.ArgumentParser) -> None:
     """The options of ``--table1``, the batch test of SJ 2012 Table I."""
     parser.add_argument("--table1", action="store_true", help="run the batch test of SJ 2012 Table I")
     parser.add_argument("--runs", type=int, default=1000, help="simulated runs for --table1 (default 1000)")
-    parser.add_argument("--seed", type=int, default=2012, help="seed of the simulated runs (default 2012)")
+    parser.add_argument("--seed", type=seed, default=2012, help="seed of the simulated runs (default 2012)")
     parser.add_argument("--json", action="store_true", help="print the --table1 result as JSON")
     parser.add_argument(
         "--data", dest="data_dir", type=Path, help="--table1 on the *.npz/*.csv recordings here"

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from carousel_theory.cli._arguments import seed
 from carousel_theory.effects import CATALOGUE
 from carousel_theory.output_files import atomic_output, plan_outputs
 from carousel_theory.simulate import (
@@ -32,7 +33,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         ),
     )
     parser.add_argument("out", type=Path, metavar="OUT", help="output file (.csv or .npz)")
-    parser.add_argument("--seed", type=int, required=True, help="seed of numpy.random.default_rng")
+    parser.add_argument("--seed", type=seed, required=True, help="seed of numpy.random.default_rng")
     parser.add_argument("--duration", type=float, default=600.0, help="seconds (default 600)")
     parser.add_argument("--sample-rate", type=float, default=100.0, help="Hz (default 100)")
     parser.add_argument("--bias", type=float, default=0.0, help="constant bias, rad/s")
