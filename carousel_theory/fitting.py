@@ -575,7 +575,7 @@ def _used_mask(observed: ObservedAllan, options: FitOptions) -> np.ndarray:
         index = int(np.flatnonzero(used & (allan.avar <= 0))[0])
         raise UnusableSignalError(
             f"y: the Allan variance is 0 at τ = {allan.tau[index]:.4g} s (m = "
-            f"{int(allan.samples_per_cluster[index])} samples); a noise model needs a positive Allan "
+            f"{int(sizes[index])} samples); a noise model needs a positive Allan "
             "variance at every τ it fits (a record that repeats itself every m samples has none): check the "
             "recording or narrow tau_range"
         )
@@ -1204,11 +1204,13 @@ def consistency_test(values: Any) -> ConsistencyTest | None:
     """Are the runs one population? ``values`` is a sequence of (estimate, standard error).
 
     χ² = Σ ((x_k − x̄_w)/s_k)² with x̄_w the inverse-variance weighted mean, on K − 1 degrees of freedom.
-    None when there are fewer than 2 runs or an error is not finite and positive.
+    None when there are fewer than 2 runs, an estimate is not finite, or an error is not finite and
+    positive.
     """
     estimates = np.array([float(v) for v, _ in values])
     errors = np.array([float(e) for _, e in values])
-    if len(estimates) < 2 or not np.all(np.isfinite(errors)) or np.any(errors <= 0):
+    finite = np.all(np.isfinite(estimates)) and np.all(np.isfinite(errors))
+    if len(estimates) < 2 or not finite or np.any(errors <= 0):
         return None
     weights = 1.0 / errors**2
     mean = float(np.sum(weights * estimates) / np.sum(weights))

@@ -139,6 +139,23 @@ def _refuse_dishonest(filled: np.ndarray, rate: float, offsets: np.ndarray, sour
         )
 
 
+#: A grid of more than this many bins per sample is refused before its bins are counted.
+SPARSE_GRID_FACTOR = 16
+
+
+def _refuse_sparse_grid(offsets: np.ndarray, rate: float, resolution: float, source: str) -> None:
+    """Refuse, before the bins are counted, a grid of more than SPARSE_GRID_FACTOR bins per sample (most
+    of them empty: :func:`_refuse_dishonest` would refuse it after counting them, which at a rate far
+    above the data's costs memory and time; nearer the data's rate it names the gap or the share)."""
+    bins = float(np.floor((offsets[-1] + resolution) * rate + _EDGE_TOLERANCE)) + 1.0
+    if bins > SPARSE_GRID_FACTOR * len(offsets):
+        raise ValueError(
+            f"{source}: resampling at {rate:.6g} Hz makes {bins:.6g} bins for {len(offsets)} samples, so "
+            f"more than {MAX_EMPTY_FRACTION:.0%} of them would be empty; the recording's mean rate is "
+            f"{(len(offsets) - 1) / float(offsets[-1]):.6g} Hz: resample at a lower rate"
+        )
+
+
 def block_average(
     offsets: np.ndarray,
     columns: Mapping[str, np.ndarray],
@@ -159,6 +176,7 @@ def block_average(
         if sample_rate is None:
             sample_rate = mean_rate / 2.0 ** (_HALVINGS - 1)  # refused below, naming the gap
     rate = float(check_positive_real("sample_rate", sample_rate))
+    _refuse_sparse_grid(offsets, rate, resolution, source)
     index = _bin_indices(offsets, rate, resolution)
     count = np.bincount(index).astype(np.float64)
     filled = count > 0

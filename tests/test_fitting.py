@@ -284,6 +284,7 @@ def test_consistency_test_worked_by_hand():
     assert result.p_value == pytest.approx(float(stats.chi2.sf(2.0, 1)), rel=1e-15)
     assert consistency_test([(1.0, 1.0)]) is None
     assert consistency_test([(1.0, 1.0), (2.0, math.inf)]) is None
+    assert consistency_test([(math.inf, 0.1), (2.0, 0.1)]) is None
 
 
 BAD_OPTIONS = [

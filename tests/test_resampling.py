@@ -188,3 +188,10 @@ def test_batch_task_reads_with_the_resample_option(bursty_npz):
         allan_task(str(bursty_npz), TaskOptions())
     rows = allan_task(str(bursty_npz), TaskOptions(resample=10.0))
     assert [row.axis for row in rows] == ["wx", "wy"] and rows[0].sample_rate_hz == 10.0
+
+
+def test_a_rate_far_above_the_data_is_refused_before_its_bins_are_counted():
+    # 10⁹ Hz on 100 samples at 100 Hz would count 10⁹ bins; refused at once, naming the rate and the share
+    time = np.arange(100) / 100.0
+    with pytest.raises(ValueError, match=r"resampling at 1e\+09 Hz makes 9\.9e\+08 bins for 100 samples"):
+        recording_from_arrays({"wx": _white(100, 5)}, time=time, resample=1e9)
