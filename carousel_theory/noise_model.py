@@ -502,17 +502,18 @@ def allan_variance_from_increments(increment_covariance: np.ndarray, sizes: np.n
     return result
 
 
-def cluster_sizes(sizes: Any) -> np.ndarray:
-    """``sizes`` as a 1-D int64 array after checking them: integers (or integral floats), each ≥ 1."""
+def cluster_sizes(sizes: Any, name: str = "sizes") -> np.ndarray:
+    """``sizes`` as a 1-D int64 array after checking them: integers (or integral floats), each ≥ 1;
+    messages name them ``name``."""
     given = np.atleast_1d(np.asarray(sizes))
     if given.ndim != 1 or not len(given):
-        raise ValueError(f"sizes={sizes!r}: must be a non-empty 1-D array of cluster sizes (samples)")
+        raise ValueError(f"{name}={sizes!r}: must be a non-empty 1-D array of cluster sizes (samples)")
     if given.dtype.kind not in "iu" and not (
         given.dtype.kind == "f" and np.all(np.isfinite(given)) and np.all(given == np.rint(given))
     ):
-        raise TypeError(f"sizes={sizes!r}: cluster sizes must be integers (samples per cluster)")
+        raise TypeError(f"{name}={sizes!r}: cluster sizes must be integers (samples per cluster)")
     if np.min(given) < 1:
-        raise ValueError(f"sizes={sizes!r}: every cluster size must be >= 1 sample")
+        raise ValueError(f"{name}={sizes!r}: every cluster size must be >= 1 sample")
     return given.astype(np.int64)
 
 

@@ -73,6 +73,7 @@ from carousel_theory.lag_quadrature import (
 from carousel_theory.noise_model import (
     NoiseModel,
     ar_increment_reach,
+    cluster_sizes,
     unit_flicker_increment_autocovariance,
 )
 
@@ -371,16 +372,9 @@ def _checked_sizes(tau_samples: Any, length: Any) -> tuple[np.ndarray, int]:
     """(the cluster sizes m as int64, the record length n) after checking them: n an integer ≥ 2, each m
     an integer ≥ 1 with 2m ≤ n (two clusters of m samples at least)."""
     length = check_positive_integer("length", length, minimum=2)
-    given = np.atleast_1d(np.asarray(tau_samples))
-    if given.ndim != 1 or not len(given):
-        raise ValueError(f"tau_samples={tau_samples!r}: must be a non-empty 1-D array of cluster sizes")
-    if given.dtype.kind not in "iu" and not (
-        given.dtype.kind == "f" and np.all(np.isfinite(given)) and np.all(given == np.rint(given))
-    ):
-        raise TypeError(f"tau_samples={tau_samples!r}: cluster sizes must be integers (samples per cluster)")
-    sizes = given.astype(np.int64)
-    if np.any(sizes < 1) or np.any(2 * sizes > length):
-        wrong = int(sizes[(sizes < 1) | (2 * sizes > length)][0])
+    sizes = cluster_sizes(tau_samples, "tau_samples")
+    if np.any(2 * sizes > length):
+        wrong = int(sizes[2 * sizes > length][0])
         raise ValueError(
             f"tau_samples: m={wrong} is outside 1 … {length // 2}: a record of length={length} samples "
             "holds two clusters of at most n/2 samples"

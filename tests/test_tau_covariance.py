@@ -326,7 +326,7 @@ def test_bad_calls():
     ("sizes", "length", "error", "message"),
     [
         ([1, 64], 100, ValueError, r"m=64 is outside 1 … 50: a record of length=100"),
-        ([0, 2], 100, ValueError, r"m=0 is outside 1 … 50"),
+        ([0, 2], 100, ValueError, r"tau_samples=\[0, 2\]: every cluster size must be >= 1"),
         ([2.5], 100, TypeError, "cluster sizes must be integers"),
         ([float("nan")], 100, TypeError, "cluster sizes must be integers"),
         ([], 100, ValueError, "non-empty 1-D array"),
