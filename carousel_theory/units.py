@@ -140,48 +140,68 @@ def from_rad_per_s(values: Any, units: str) -> np.ndarray:
 
 def rad_per_s_to_deg_per_h(value: float) -> float:
     """A rate (or a bias, or a bias instability) in rad/s expressed in °/h."""
-    return float(value) / DEGREE * HOUR
+    return _finite("value", value) / DEGREE * HOUR
 
 
 def angle_random_walk_from_white_variance(white_variance: float, sample_rate: float) -> float:
     """Angle random walk N = √(σ² Δt) in rad/√s from the per-sample white variance σ² ((rad/s)²)."""
-    return math.sqrt(float(white_variance) / float(sample_rate))
+    return math.sqrt(
+        _check_datasheet_value("white_variance", white_variance) / _check_sample_rate(sample_rate)
+    )
 
 
 def rate_random_walk_from_increment_variance(rrw_variance: float, sample_rate: float) -> float:
     """Rate random walk K = √(σ_q,sample² / Δt) in rad/s/√s from the per-sample increment variance."""
-    return math.sqrt(float(rrw_variance) * float(sample_rate))
+    return math.sqrt(_check_datasheet_value("rrw_variance", rrw_variance) * _check_sample_rate(sample_rate))
 
 
 def to_deg_per_sqrt_hour(rad_per_sqrt_second: float) -> float:
     """rad/√s → °/√h: multiply by (180/π)·√3600."""
-    return float(rad_per_sqrt_second) / DEGREE * math.sqrt(HOUR)
+    return _finite("rad_per_sqrt_second", rad_per_sqrt_second) / DEGREE * math.sqrt(HOUR)
 
 
 def to_deg_per_hour_per_sqrt_hour(rad_per_second_per_sqrt_second: float) -> float:
     """rad/s/√s → °/h/√h: multiply by (180/π)·3600·√3600."""
-    return float(rad_per_second_per_sqrt_second) / DEGREE * HOUR * math.sqrt(HOUR)
+    value = _finite("rad_per_second_per_sqrt_second", rad_per_second_per_sqrt_second)
+    return value / DEGREE * HOUR * math.sqrt(HOUR)
 
 
 def bias_instability_from_allan_minimum(minimum_allan_deviation: float) -> float:
     """Bias instability B = σ_A,min / √(2 ln 2/π) (the 0.664 convention of IEEE Std 952)."""
-    return float(minimum_allan_deviation) / BIAS_INSTABILITY_FACTOR
+    return (
+        _check_datasheet_value("minimum_allan_deviation", minimum_allan_deviation) / BIAS_INSTABILITY_FACTOR
+    )
 
 
 def deg_per_h_to_rad_per_s(value: float) -> float:
     """A rate (or a bias instability) in °/h expressed in rad/s; the inverse of
     :func:`rad_per_s_to_deg_per_h`."""
-    return float(value) * DEGREE / HOUR
+    return _finite("value", value) * DEGREE / HOUR
 
 
 def from_deg_per_sqrt_hour(deg_per_sqrt_hour: float) -> float:
     """°/√h → rad/√s: divide by (180/π)·√3600; the inverse of :func:`to_deg_per_sqrt_hour`."""
-    return float(deg_per_sqrt_hour) * DEGREE / math.sqrt(HOUR)
+    return _finite("deg_per_sqrt_hour", deg_per_sqrt_hour) * DEGREE / math.sqrt(HOUR)
 
 
 def from_deg_per_hour_per_sqrt_hour(deg_per_hour_per_sqrt_hour: float) -> float:
     """°/h/√h → rad/s/√s; the inverse of :func:`to_deg_per_hour_per_sqrt_hour`."""
-    return float(deg_per_hour_per_sqrt_hour) * DEGREE / (HOUR * math.sqrt(HOUR))
+    return (
+        _finite("deg_per_hour_per_sqrt_hour", deg_per_hour_per_sqrt_hour) * DEGREE / (HOUR * math.sqrt(HOUR))
+    )
+
+
+def _finite(name: str, value: Any) -> float:
+    """``value`` as a float after checking it: a real number (not a bool or a string), finite."""
+    if isinstance(value, (bool, str, bytes)):
+        raise TypeError(f"{name}={value!r}: must be a real number")
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name}={value!r}: must be a real number") from None
+    if not math.isfinite(number):
+        raise ValueError(f"{name}={value!r}: must be finite")
+    return number
 
 
 def _check_datasheet_value(name: str, value: Any) -> float:
@@ -241,22 +261,22 @@ def flicker_variance_from_bias_instability(bias_instability_deg_per_hour: float)
 
 def to_microradians(radians: float) -> float:
     """An angle (the quantization Q) in µrad."""
-    return float(radians) / MICRORADIAN
+    return _finite("radians", radians) / MICRORADIAN
 
 
 def from_microradians(microradians: float) -> float:
     """An angle in µrad → rad; the inverse of :func:`to_microradians`."""
-    return float(microradians) * MICRORADIAN
+    return _finite("microradians", microradians) * MICRORADIAN
 
 
 def to_arcseconds(radians: float) -> float:
     """An angle (the quantization Q) in arcseconds."""
-    return float(radians) / ARCSECOND
+    return _finite("radians", radians) / ARCSECOND
 
 
 def from_arcseconds(arcseconds: float) -> float:
     """An angle in arcseconds → rad; the inverse of :func:`to_arcseconds`."""
-    return float(arcseconds) * ARCSECOND
+    return _finite("arcseconds", arcseconds) * ARCSECOND
 
 
 def square_unit(unit: str) -> str:

@@ -161,3 +161,41 @@ def test_all_is_honest():
     for module in (units, noise_parameters):
         assert public_functions(module) <= set(module.__all__)
         assert all(hasattr(module, name) for name in module.__all__)
+
+
+BAD_CONVERSIONS = [
+    (
+        "arw-rate-zero",
+        lambda: units.angle_random_walk_from_white_variance(1.0, 0.0),
+        ValueError,
+        "sample_rate",
+    ),
+    (
+        "arw-negative",
+        lambda: units.angle_random_walk_from_white_variance(-1.0, 1.0),
+        ValueError,
+        "variance=-1",
+    ),
+    ("rrw-rate-zero", lambda: units.rate_random_walk_from_increment_variance(1.0, 0.0), ValueError, "rate=0"),
+    ("to-arw-nan", lambda: units.to_deg_per_sqrt_hour(math.nan), ValueError, "must be finite"),
+    ("to-rrw-inf", lambda: units.to_deg_per_hour_per_sqrt_hour(math.inf), ValueError, "must be finite"),
+    ("rate-string", lambda: units.rad_per_s_to_deg_per_h("1"), TypeError, "value='1'"),
+    ("rate-bool", lambda: units.rad_per_s_to_deg_per_h(True), TypeError, "value=True"),
+    ("back-nan", lambda: units.deg_per_h_to_rad_per_s(math.nan), ValueError, "value=nan"),
+    ("minimum-negative", lambda: units.bias_instability_from_allan_minimum(-1.0), ValueError, ">= 0"),
+    ("urad-none", lambda: units.to_microradians(None), TypeError, "radians=None"),
+    ("arcsec-nan", lambda: units.from_arcseconds(math.nan), ValueError, "arcseconds=nan"),
+]
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"), [b[1:] for b in BAD_CONVERSIONS], ids=[b[0] for b in BAD_CONVERSIONS]
+)
+def test_conversions_refuse_what_is_not_a_finite_number_by_name(call, error, message):
+    with pytest.raises(error, match=message):
+        call()
+
+
+def test_signed_rates_and_numpy_scalars_still_convert():
+    assert units.rad_per_s_to_deg_per_h(np.float64(-1.0)) == pytest.approx(-180.0 / math.pi * 3600.0)
+    assert units.deg_per_h_to_rad_per_s(np.array(3600.0)) == pytest.approx(math.pi / 180.0)
