@@ -63,6 +63,7 @@ from carousel_theory.noise_model import (
     RRW_ALLAN_VARIANCE,
     WHITE_ALLAN_VARIANCE,
     NoiseModel,
+    cluster_sizes,
     term_allan_variance,
 )
 from carousel_theory.processes import fractional_coefficients
@@ -827,11 +828,7 @@ def _cumulative_square_at(psi_sum: np.ndarray, m: int, last: np.ndarray) -> np.n
 
 
 def _check_tau_samples(tau_samples: Any, length: int | None = None) -> np.ndarray:
-    array = np.atleast_1d(np.asarray(tau_samples))
-    if array.ndim != 1 or array.size == 0 or not np.issubdtype(array.dtype, np.integer):
-        raise TypeError(f"tau_samples={tau_samples!r}: must be a non-empty 1-D array of integers (samples)")
-    if np.any(array < 1):
-        raise ValueError(f"tau_samples={tau_samples!r}: must be >= 1")
+    array = cluster_sizes(tau_samples, "tau_samples")
     if length is not None and np.any(3 * array > length):
         raise ValueError(f"tau_samples={tau_samples!r}: must be at most a third of length={length}")
     return array.astype(np.int64)

@@ -145,25 +145,26 @@ def yule_walker(x: Any, sample_rate: float, maximum_order: int) -> tuple[float, 
     """AR coefficients by Yule–Walker on ``x`` with its slow part removed (module text); () for order 0."""
     check_positive_integer("maximum_order", maximum_order)
     autocovariance, n = high_passed_autocovariance(x, sample_rate, maximum_order)
-    return _plain(autocovariance, _checked_order(n, maximum_order), maximum_order)
+    _check_order(n, maximum_order)
+    return _plain(autocovariance, n, maximum_order)
 
 
 def yule_walker_estimate(x: Any, sample_rate: float, maximum_order: int) -> ShortNoiseEstimate:
     """:func:`yule_walker` with the coefficients' covariance (:func:`coefficient_covariance`)."""
     check_positive_integer("maximum_order", maximum_order)
     autocovariance, n = high_passed_autocovariance(x, sample_rate, maximum_order)
-    coefficients = _plain(autocovariance, _checked_order(n, maximum_order), maximum_order)
+    _check_order(n, maximum_order)
+    coefficients = _plain(autocovariance, n, maximum_order)
     return _estimate(autocovariance, n, coefficients, PLAIN if coefficients else "", maximum_order)
 
 
-def _checked_order(n: int, maximum_order: int) -> int:
-    """``n`` after checking that a record of n samples can carry AR orders up to ``maximum_order``: at
-    most n/4 (each of the p lags the estimate reads must be averaged over many samples)."""
+def _check_order(n: int, maximum_order: int) -> None:
+    """Refuse AR orders a record of n samples cannot carry: at most n/4 (each of the p lags the estimate
+    reads must be averaged over many samples)."""
     if maximum_order > n // 4:
         raise ValueError(
             f"maximum_order={maximum_order}: a record of {n} samples carries AR orders up to n/4 = {n // 4}"
         )
-    return n
 
 
 def _plain(autocovariance: np.ndarray, n: int, maximum_order: int) -> tuple[float, ...]:
@@ -224,7 +225,7 @@ def short_noise_estimate(x: Any, sample_rate: float, maximum_order: int) -> Shor
     """:func:`short_noise_coefficients` with the estimator chosen and the coefficients' covariance."""
     check_positive_integer("maximum_order", maximum_order)
     autocovariance, n = high_passed_autocovariance(x, sample_rate, _beside_white_lags(maximum_order))
-    _checked_order(n, maximum_order)
+    _check_order(n, maximum_order)
     corrected = autocovariance
     coefficients, estimator = _closer(autocovariance, n, maximum_order)
     for _ in range(OFFSET_ROUNDS):
