@@ -88,7 +88,13 @@ from carousel_theory._validation import (
     check_positive_real,
     check_probability,
 )
-from carousel_theory.allan import AllanResult, allan_variance, check_tau_range, with_model_intervals
+from carousel_theory.allan import (
+    AllanResult,
+    allan_variance,
+    check_tau_range,
+    equivalent_degrees_of_freedom,
+    with_model_intervals,
+)
 from carousel_theory.autoregression import (
     ShortNoiseEstimate,
     correlation_is_long,
@@ -816,13 +822,18 @@ def _settled(
 
 
 def _white_edf(problem: _Problem) -> np.ndarray:
-    from carousel_theory.tau_covariance import allan_estimate_variance
-
-    unit = NoiseModel(sample_rate=problem.sample_rate, white_variance=1.0)
-    variance = allan_estimate_variance(
-        unit, problem.sizes, problem.length, estimator=problem.estimator, rule=WEIGHTS_RULE
-    )
-    return 2.0 * unit.allan_variance(problem.sizes) ** 2 / variance
+    """The degrees of freedom of the Allan variance estimates of white noise at the used τ (the iterated
+    GLS's diagonal start), in exact integers
+    (:func:`~carousel_theory.allan.equivalent_degrees_of_freedom`)."""
+    overlapping = problem.estimator == "overlapping"
+    edf = []
+    for m in problem.sizes.tolist():
+        terms = problem.length - 2 * m + 1 if overlapping else problem.length // m - 1
+        stride = 1 if overlapping else m
+        edf.append(
+            equivalent_degrees_of_freedom("white", m, terms, stride, problem.length, problem.sample_rate)
+        )
+    return np.array(edf)
 
 
 def _parameter_covariance(

@@ -15,8 +15,8 @@ K_j − K_i. The plan of a pair:
 
 ``points``, ``block_ratio`` and ``exact_reach`` are a :class:`QuadratureRule`. The lag quadrature's
 error bound holds for any rule; :data:`PROVED_RULE` keeps it far below the covariance for the models
-of a gyro fit, :data:`WEIGHTS_RULE` takes about half the nodes and lags where only the values count
-(a fit's weights; :mod:`carousel_theory.lag_quadrature`, module text: Rules).
+of a gyro fit, :data:`WEIGHTS_RULE` takes a quarter of the nodes and lags where seven digits of the
+values suffice (a fit's weights; :mod:`carousel_theory.lag_quadrature`, module text: Rules).
 
 :func:`plan_pairs` plans all the pairs of one covariance together: the segments of every pair are rows
 of one array, and the blocks of every half-segment grow in one loop over the growth steps (about thirty
@@ -70,9 +70,9 @@ class QuadratureRule:
 #: for d from 0.02 to 0.98); measured at octave τ of 10⁶ samples, 3·10⁻¹⁵ of √(C_ii C_jj) for white + RRW
 #: + 1/f (d = 0.5) + Gauss–Markov and 7·10⁻¹¹ for 1/f alone at d = 0.95 (below the rounding there).
 PROVED_RULE = QuadratureRule(points=12, block_ratio=0.5, exact_reach=32)
-#: A fit's weights: a third of the Gauss nodes and half the exact lags of :data:`PROVED_RULE`, the same
-#: values to 10⁻¹¹ of the covariance for d ≤ 0.6 (measured: lag_quadrature's module text, Rules).
-WEIGHTS_RULE = QuadratureRule(points=8, block_ratio=1.0, exact_reach=16)
+#: A fit's weights: a quarter of the Gauss nodes and of the exact lags of :data:`PROVED_RULE`, the same
+#: values to 2·10⁻⁷ of the covariance (measured: lag_quadrature's module text, Rules).
+WEIGHTS_RULE = QuadratureRule(points=4, block_ratio=1.0, exact_reach=16)
 
 BLOCK_LENGTHS = np.array(sorted({math.floor(2.0 ** (k / 4.0)) for k in range(4 * 62)}), dtype=np.int64)
 _RAMPS = 9  # at most nine ramps per pair

@@ -93,16 +93,20 @@ relative when the plan changes which lags are exact, and at d ≈ 0.92, m_i = 50
 Rules (:class:`~carousel_theory.lag_plan.QuadratureRule`). The bound above holds for any rule.
 :data:`~carousel_theory.lag_plan.PROVED_RULE` (12 points, blocks at most half their distance to the
 breakpoint, 32 exact lags) keeps it below 10⁻¹¹ of the sum for the models a gyro fit meets and is the
-default of every sum here. :data:`~carousel_theory.lag_plan.WEIGHTS_RULE` (8 points, blocks up to their
-whole distance, 16 exact lags) has about a third of the Gauss nodes and half the exact lags and costs
-about half (octave τ of 10⁶ samples, white + RRW + 1/f + AR(1): 0.023 s per covariance against 0.045 s,
-0.05 s against 0.15 s for the first, which builds the plan); its proved bound is loose (10⁻⁸–10⁻⁶ of the
-sum). Its values are nonetheless as close to the every-lag sum as PROVED_RULE's: within both sums'
-rounding allowances plus 10⁻¹¹ of the sum for random pairs, d from 0.02 to 0.98, with and without AR
-(where a 6-point rule misses that on a third of the draws), and within 5·10⁻¹³ of PROVED_RULE's
-covariance at octave τ of 10⁶ samples for a fit's models (tests). A fit weights its GLS with it (its
-C is evaluated at the estimate, so far fewer digits count), and the Allan variance's χ² intervals take
-their degrees of freedom from it.
+default of every sum here. :data:`~carousel_theory.lag_plan.WEIGHTS_RULE` (4 points, the fewest that
+integrate the finite terms' N c², a polynomial of degree 7 on a block, exactly; blocks up to their whole
+distance, 16 exact lags) has a quarter of the Gauss nodes and of the exact lags (octave τ of 10⁶
+samples, white + RRW + 1/f + AR(1): 73,764 nodes and 42,045 lags against 291,912 and 149,676) and costs
+a little over a quarter (0.013 s per covariance against 0.047 s; 0.043 s against 0.13 s for the first,
+which builds the plan). Its values are within 2·10⁻⁷ of the every-lag sum beyond both sums' rounding
+allowances for pairs with d from 0.02 to 0.98, with and without AR (measured up to 1.1·10⁻⁷, at d = 0.5
+and m_j/m_i = 16, on a grid of d, m_i, m_j/m_i and lengths), and within 2·10⁻⁷ of √(C_ii C_jj) of
+PROVED_RULE's covariance at octave τ of 10⁶ samples for a fit's models (measured up to 8·10⁻⁸, at
+d = 0.02 beside a Gauss–Markov term of φ = 0.99; tests). A fit
+weights its GLS with it: its C is evaluated at an estimate known to a few per cent, and a relative
+error ε in C moves the estimate and the χ² by about ε of themselves (10⁻⁸ measured on the benchmark's
+records), where an 8-point rule (10⁻¹¹) cost 1.6 times as much per covariance. The Allan variance's χ²
+intervals take their degrees of freedom from it (a quantile needs far fewer digits).
 
 AR modes. The modes' part of H, G(|x + 2|) = Re Σ_i C_i λ_i^{|x+2|}, is analytic on each side of x = −2
 and continued between the integers, so Gauss blocks cover it like the 1/f part, with its derivative in B,
@@ -596,10 +600,16 @@ def _direct_values(pairs: _Pairs, lag_model: LagModel, owner: np.ndarray, lags: 
         integers = flicker_increment_difference(
             np.arange(int(reach.max()) + 1, dtype=np.float64), lag_model.flicker_d
         )
+    # γ_z at the nearest argument x₀ of every lag outside the support, in one call for all the pairs.
+    starts = np.zeros(len(lags))
+    if not np.all(integral):
+        starts[~integral] = flicker_increment_difference(
+            pairs.nearest(owner, lags)[~integral], lag_model.flicker_d
+        )
     for row in np.unique(owner).tolist():
         mine = owner == row
         m_i, m_j = int(pairs.m_i[row]), int(pairs.m_j[row])
-        flicker[mine] = _direct_flicker(m_i, m_j, lag_model, lags[mine], integers)
+        flicker[mine] = _direct_flicker(m_i, m_j, lag_model, lags[mine], integers, starts[mine])
     return flicker + _nine_term_sum(pairs, finite, owner, lags)
 
 
@@ -663,12 +673,18 @@ def _window(m_i: int, m_j: int) -> np.ndarray:
 
 
 def _direct_flicker(
-    m_i: int, m_j: int, lag_model: LagModel, lags: np.ndarray, integers: np.ndarray | None = None
+    m_i: int,
+    m_j: int,
+    lag_model: LagModel,
+    lags: np.ndarray,
+    integers: np.ndarray | None = None,
+    starts: np.ndarray | None = None,
 ) -> np.ndarray:
     """σ_w² Σ_u W(u) γ_z(δ + u) at integer lags or outside the support, γ_z(x) = C_d/rising(|x| + d − 1,
     3 − 2d) (even on the integers, analytic on either side of the support). At integer lags γ_z is
     evaluated once on the integers the lags reach and correlated with W; ``integers``, when given, holds
-    γ_z(0), γ_z(1), … out to every |x| these lags reach (the same values, shared by many pairs)."""
+    γ_z(0), γ_z(1), … out to every |x| these lags reach (the same values, shared by many pairs);
+    ``starts``, when given, holds γ_z(x₀) at each lag (read at the lags outside the support)."""
     d, window = lag_model.flicker_d, _window(m_i, m_j)
     result = np.empty(len(lags))
     integral = lags == np.rint(lags)
@@ -682,21 +698,25 @@ def _direct_flicker(
             gamma = integers[np.abs(reached)]
         result[integral] = np.correlate(gamma, window, "valid")[(points - first).astype(np.int64)]
     if not np.all(integral):
-        result[~integral] = _outside_flicker(lags[~integral], m_i, m_j, d, window)
+        start = None if starts is None else starts[~integral]
+        result[~integral] = _outside_flicker(lags[~integral], m_i, m_j, d, window, start)
     return lag_model.flicker_variance * result
 
 
-def _outside_flicker(lags: np.ndarray, m_i: int, m_j: int, d: float, window: np.ndarray) -> np.ndarray:
+def _outside_flicker(
+    lags: np.ndarray, m_i: int, m_j: int, d: float, window: np.ndarray, start: np.ndarray | None = None
+) -> np.ndarray:
     """Σ_u W(u) γ_z(δ + u) at lags δ outside the support (every δ + u of one sign, |δ + u| ≥ 1), unit σ_w²:
     γ_z at the run of arguments x₀, x₀ + 1, … (x₀ the nearest, :meth:`_Pairs.nearest`) from γ_z(x₀) and
     the ratio γ_z(x + 1)/γ_z(x) = (x + d − 1)/(x + 2 − d) (Γ(x + d − 1)/Γ(x + 2 − d) up one step), a
     cumulative product: the magnitudes fall along the run and each step adds a rounding, so the values
-    carry at most about len(W) ulps; W ≥ 0, so the sum keeps that relative accuracy."""
+    carry at most about len(W) ulps; W ≥ 0, so the sum keeps that relative accuracy. ``start``, when
+    given, is γ_z(x₀) (the caller's, formed for many pairs at once)."""
     above = lags > 0  # the support −(2m_j − 2) … 2m_i − 2 lies below δ: δ + u > 0 for every u
     nearest = np.where(above, lags - (2 * m_i - 2), -lags - (2 * m_j - 2))
     arguments = nearest[:, None] + np.arange(len(window) - 1, dtype=np.float64)
     gamma = np.empty((len(lags), len(window)))
-    gamma[:, 0] = flicker_increment_difference(nearest, d)
+    gamma[:, 0] = flicker_increment_difference(nearest, d) if start is None else start
     gamma[:, 1:] = np.cumprod((arguments + (d - 1.0)) / (arguments + (2.0 - d)), axis=1)
     gamma[:, 1:] *= gamma[:, :1]
     # Column k is γ_z(x₀ + k): u = −(2m_i − 2) + k above the support, u = 2m_j − 2 − k below it, where

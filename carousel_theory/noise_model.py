@@ -300,8 +300,10 @@ def ar_long_run_variance(variance: float, coefficients: tuple[float, ...]) -> fl
     return float(variance) / (1.0 - sum(coefficients)) ** 2
 
 
+@functools.lru_cache(maxsize=256)
 def _slowest_root(coefficients: tuple[float, ...]) -> float:
-    """ρ = the largest |λ| over the roots λ of z^p − Σ φ_j z^{p−j} (stationary when ρ < 1)."""
+    """ρ = the largest |λ| over the roots λ of z^p − Σ φ_j z^{p−j} (stationary when ρ < 1); kept per
+    coefficients, which every model built during a fit checks again."""
     return float(np.max(np.abs(np.roots(np.concatenate(([1.0], -np.asarray(coefficients)))))))
 
 

@@ -19,8 +19,15 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
-from carousel_theory.autoregression import short_noise_coefficients, yule_walker, yule_walker_beside_white
+from carousel_theory.autoregression import (
+    lag_products,
+    short_noise_coefficients,
+    yule_walker,
+    yule_walker_beside_white,
+)
 from carousel_theory.fitting import FitOptions, fit_noise_model
 from carousel_theory.noise_model import NoiseModel
 from carousel_theory.simulate import sample_noise
@@ -158,3 +165,27 @@ def test_the_high_pass_needs_a_sample_rate(rate):
 
     with pytest.raises(ValueError, match="sample_rate="):
         high_pass_window(rate)
+
+
+@given(
+    length=st.integers(min_value=1, max_value=20_000),
+    lags=st.integers(min_value=0, max_value=80),
+    seed=st.integers(min_value=0, max_value=2**32 - 1),
+)
+def test_lag_products_by_gram_blocks_are_the_exact_integer_sums(length, lags, seed):
+    # Integer samples below 2⁷: every product and partial sum is an integer below 2⁵³, so the Gram blocks'
+    # sums are exact whatever their order, and equal to the lag products in Python integers. Lengths
+    # shorter than a row, than a block, and with a partial last row; lags up to 80 (rows wider than 32).
+    lags = min(lags, length - 1)
+    samples = np.random.default_rng(seed).integers(-100, 100, length)
+    values = [int(v) for v in samples]
+    exact = [sum(values[i] * values[i + k] for i in range(length - k)) for k in range(lags + 1)]
+    found = lag_products(samples.astype(np.float64), lags)
+    np.testing.assert_array_equal(found, np.array(exact, dtype=float))
+
+
+def test_lag_products_of_real_samples_equal_one_dot_per_lag_within_rounding():
+    x = np.random.default_rng(7).standard_normal(300_001)
+    direct = np.array([float(np.dot(x[: len(x) - k], x[k:])) for k in range(25)])
+    bound = 1e-12 * float(np.dot(x, x))  # rounding of a sum of 3·10⁵ products, far below their spread
+    assert np.all(np.abs(lag_products(x, 24) - direct) <= bound)

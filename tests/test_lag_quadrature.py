@@ -93,11 +93,11 @@ def _flicker_model(d: float, with_ar: bool) -> NoiseModel:
 )
 def test_gauss_blocks_equal_every_lag_summed_within_the_bound(rule, d, m_i, ratio, length, with_ar):
     """Both rules within their proved bound plus both sums' rounding allowances (the bound is for exact
-    arithmetic: module text, Rounding). PROVED_RULE's bound is below 10⁻¹¹ of the sum; WEIGHTS_RULE's
-    (8 points, blocks up to their distance from the breakpoint, 16 exact lags) is loose, up to about
-    10⁻⁶, and both are, measured, within the rounding allowances plus 10⁻¹¹ of the sum (on 60 such
-    draws a 6-point rule of WEIGHTS_RULE's blocks misses that on 23, by up to 5·10⁻¹¹, a 4-point one on
-    all, by up to 9·10⁻⁸)."""
+    arithmetic: module text, Rounding). PROVED_RULE's bound is below 10⁻¹¹ of the sum, and its values
+    are within the rounding allowances plus 10⁻¹¹ of the sum. WEIGHTS_RULE's (4 points, blocks up to
+    their distance from the breakpoint, 16 exact lags) bound is loose, and its values are within the
+    allowances plus 2·10⁻⁷ of the sum, its stated accuracy (measured up to 1.1·10⁻⁷ at d = 0.5,
+    m_j/m_i = 16; an 8-point rule of the same blocks stays within 10⁻¹¹, a 6-point one within 5·10⁻¹¹)."""
     model = _flicker_model(d, with_ar)
     m_j = m_i * ratio
     assume(3 * m_j <= length)  # at least three clusters, as the fit requires
@@ -107,7 +107,8 @@ def test_gauss_blocks_equal_every_lag_summed_within_the_bound(rule, d, m_i, rati
     (rounding,) = rounding_allowances(lag_model, [pair], rule)
     reference, reference_rounding = _every_lag(model, m_i, m_j, length)
     assert abs(total - reference) <= bound + rounding + reference_rounding
-    assert abs(total - reference) <= rounding + reference_rounding + 1e-11 * reference
+    accuracy = 1e-11 if rule == PROVED_RULE else 2e-7
+    assert abs(total - reference) <= rounding + reference_rounding + accuracy * reference
     assert rounding + reference_rounding <= 1e-8 * reference
     if rule == PROVED_RULE:
         assert bound <= 1e-11 * reference

@@ -184,8 +184,9 @@ def test_batched_quadrature_of_a_full_model_against_the_every_lag_engine(d, rule
     # batching. A pair whose rows were mixed up would be off by far more than the bound. Rounding margin as
     # in the test above: 1e-10 of √(C_ii C_jj) (reached, near 5e-11, only by the widest ratio m_j/m_i =
     # 1024 at d ≥ 0.85, where the nine-term sum loses about (m_j/m_i)² ulps and the reference's moving
-    # sums of a slowly decaying γ_z lose as much). The fit's WEIGHTS_RULE is held to the same margin; its
-    # proved bound is looser (10⁻⁸–3·10⁻⁷ of the scale here) and is not required to be small.
+    # sums of a slowly decaying γ_z lose as much). The fit's WEIGHTS_RULE is held to its stated accuracy,
+    # 2·10⁻⁷ of the scale (measured up to 1.8·10⁻⁸ here); its proved bound is loose (up to 2·10⁻² of the
+    # scale here) and is not required to be small.
     variances = {"white_variance": 0.5, "rrw_variance": 1e-6, "flicker_variance": 1.0, "ar_variance": 0.3}
     model = NoiseModel(sample_rate=1.0, flicker_d=d, ar_coefficients=(0.5, 0.2), **variances)
     sizes = np.array([1, 2, 3, 4, 8, 16, 32, 64, 128, 256, 512, 1024])
@@ -197,7 +198,7 @@ def test_batched_quadrature_of_a_full_model_against_the_every_lag_engine(d, rule
     scale = np.sqrt(np.outer(np.diag(reference.covariance), np.diag(reference.covariance)))
     error = np.abs(result.covariance - reference.covariance)
     assert np.all(error <= result.truncation_bound + 1e-10 * scale)
-    assert np.all(error <= 1e-10 * scale)
+    assert np.all(error <= (1e-10 if rule == PROVED_RULE else 2e-7) * scale)
     if rule == PROVED_RULE:
         assert np.all(result.truncation_bound <= 1e-11 * scale)
 
@@ -213,15 +214,16 @@ FIT_MODELS = {
 @pytest.mark.parametrize("name", sorted(FIT_MODELS))
 def test_weights_rule_gives_the_proved_rules_covariance_at_a_million_samples(name):
     # The fit's rule against the reported one at octave τ of 10⁶ samples at 100 Hz (GYRO_MODEL with
-    # other orders d and AR coefficients): the same covariance to 10⁻¹¹ of √(C_ii C_jj) (measured up to
-    # 5·10⁻¹³; at d ≥ 0.75 both rules' rounding reaches 10⁻⁹–10⁻⁷ of the scale and the comparison against
+    # other orders d and AR coefficients): the same covariance to 2·10⁻⁷ of √(C_ii C_jj), the weights
+    # rule's stated accuracy (measured: 8.0·10⁻⁸ at d = 0.05 beside φ = 0.99, 1.7·10⁻¹¹–9.4·10⁻⁹ for the
+    # others; at d ≥ 0.75 both rules' rounding reaches 10⁻⁹–10⁻⁷ of the scale and the comparison against
     # every lag above holds them).
     model = replace(GYRO_MODEL, **FIT_MODELS[name])
     sizes, length = 2 ** np.arange(19), 1_000_000
     proved = allan_estimate_covariance(model, sizes, length).covariance
     weights = allan_estimate_covariance(model, sizes, length, bound=False, rule=WEIGHTS_RULE).covariance
     scale = np.sqrt(np.outer(np.diag(proved), np.diag(proved)))
-    assert np.all(np.abs(weights - proved) <= 1e-11 * scale)
+    assert np.all(np.abs(weights - proved) <= 2e-7 * scale)
 
 
 def test_covariance_without_the_bound_is_the_covariance_with_it():
