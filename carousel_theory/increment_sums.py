@@ -333,7 +333,10 @@ def finite_fourth_sum(gamma: np.ndarray, x: Any, *, total: float | None = None) 
     reach = len(gamma) - 1
     lags = np.arange(-reach, reach + 1)
     full = np.concatenate((gamma[:0:-1], gamma))
-    moments = [float(np.dot(full, lags.astype(np.float64) ** r)) for r in range(4)]
+    # einsum, not np.dot: a slow AR term's γ reaches 10⁴–10⁵ lags, where OpenBLAS threads its dot and the
+    # threads' spinning costs more CPU time than the sum (measured: a fit at φ = 0.99 took 1.6 times the CPU).
+    powers = lags.astype(np.float64)
+    moments = [float(np.einsum("i,i->", full, powers**r)) for r in range(4)]
     moments[1] = moments[3] = 0.0  # γ is even
     if total is not None:
         moments[0] = float(total)
