@@ -105,7 +105,7 @@ PROVED_RULE's covariance at octave τ of 10⁶ samples for a fit's models (measu
 d = 0.02 beside a Gauss–Markov term of φ = 0.99; tests). A fit
 weights its GLS with it: its C is evaluated at an estimate known to a few per cent, and a relative
 error ε in C moves the estimate and the χ² by about ε of themselves (10⁻⁸ measured on the benchmark's
-records), where an 8-point rule (10⁻¹¹) cost 1.6 times as much per covariance. The Allan variance's χ²
+records), where an 8-point rule (10⁻¹¹) cost 1.5 times as much per covariance. The Allan variance's χ²
 intervals take their degrees of freedom from it (a quantile needs far fewer digits).
 
 AR modes. The modes' part of H, G(|x + 2|) = Re Σ_i C_i λ_i^{|x+2|}, is analytic on each side of x = −2
