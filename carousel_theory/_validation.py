@@ -140,6 +140,8 @@ def check_bin_index(name: str, value: Any, number_of_bins: int) -> int:
 def check_finite_array(name: str, values: Any, ndim: int = 1, min_length: int = 1) -> np.ndarray:
     """Return ``values`` as a float64 array, refusing NaN/inf (with the first bad index), wrong
     dimension and too few samples."""
+    if np.iscomplexobj(values):  # a cast to float64 would drop the imaginary parts with only a warning
+        raise TypeError(f"{name}: must be an array of real numbers, got complex values")
     try:
         array = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError) as error:

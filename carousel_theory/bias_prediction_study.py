@@ -80,7 +80,8 @@ class RecordingForecast:
 
     ``model`` is the Kalman model used (its variances given or estimated, see
     ``variances_estimated``, and its order estimated too when ``estimated_d``); ``measured`` holds
-    the recorded samples of the horizon (NaN past the end of the recording).
+    the recorded samples of the horizon (NaN past the end of the recording); ``at_bound`` names the
+    REML estimates that ended at their search bound (not identified by the calibration segment).
     """
 
     start: int
@@ -92,6 +93,7 @@ class RecordingForecast:
     calibration_mean: float
     measured: np.ndarray
     estimated_d: bool = False
+    at_bound: tuple[str, ...] = ()
 
     def errors(self) -> dict[str, tuple[float, float]] | None:
         """(IE, RSSE) of KF, MA and CM when the whole horizon was recorded, else None."""
@@ -112,9 +114,10 @@ def _recording_model(
     white: float | None,
     prior: str,
     estimate_d: bool,
-) -> tuple[BiasModel, bool]:
+) -> tuple[BiasModel, bool, tuple[str, ...]]:
     if driving is not None and white is not None and not estimate_d:
-        return BiasModel(d=d, driving_variance=driving, white_variance=white, bias_prior=prior), False
+        model = BiasModel(d=d, driving_variance=driving, white_variance=white, bias_prior=prior)
+        return model, False, ()
     check_noise_signal(calibration, "the calibration segment")
     # One calibration segment: REML at fixed d, or of d too (SJ 2012 estimated the variances by hand).
     estimate = estimate_noise_variances(calibration[None, :], d, RATIO_BOUNDS, estimate_d=estimate_d)
@@ -124,7 +127,7 @@ def _recording_model(
         white_variance=estimate.white_variance if white is None or estimate_d else white,
         bias_prior=prior,
     )
-    return model, True
+    return model, True, estimate.at_bound
 
 
 def forecast_recording(
@@ -159,7 +162,7 @@ def forecast_recording(
             f"samples after start={start}"
         )
     calibration = np.asarray(rates[start : start + n], dtype=np.float64)
-    model, estimated = _recording_model(
+    model, estimated, at_bound = _recording_model(
         calibration, d, driving_variance, white_variance, bias_prior, estimate_d
     )
     indices = np.arange(start + n, start + n + h)
@@ -176,6 +179,7 @@ def forecast_recording(
         calibration_mean=float(calibration.mean()),
         measured=measured,
         estimated_d=estimate_d,
+        at_bound=at_bound,
     )
 
 

@@ -57,7 +57,8 @@ class VarianceEstimate:
     """Restricted maximum-likelihood variances of the model y = b + f + v (f of TIM 2014 eq. (3)):
     ``driving_variance`` σ_w², ``white_variance`` σ_v², from ``sections`` independent sections of
     ``length`` samples each, at the order ``d`` (given, or estimated when ``d_estimated``), with the
-    maximised restricted log-likelihood ``log_likelihood`` (constant dropped)."""
+    maximised restricted log-likelihood ``log_likelihood`` (constant dropped). ``at_bound`` names the
+    estimates that ended at their search bound ("d", "σ_v²/σ_w²"): the data do not identify them."""
 
     driving_variance: float
     white_variance: float
@@ -66,6 +67,7 @@ class VarianceEstimate:
     length: int
     log_likelihood: float
     d_estimated: bool = False
+    at_bound: tuple[str, ...] = ()
 
 
 def _profile(data: np.ndarray, d: float, log_ratio: float) -> tuple[float, float]:
@@ -416,6 +418,31 @@ def _order_limits(d: float, d_bounds: tuple[float, float]) -> tuple[float, float
     return limits
 
 
+def _check_identifiable(data: np.ndarray, parameters: int) -> None:
+    """Refuse sections with no more contrasts than parameters: each section's unknown bias takes one
+    sample's worth, and the sections × (length − 1) contrasts left must outnumber the parameters."""
+    count, length = data.shape
+    contrasts = count * (length - 1)
+    if contrasts <= parameters:
+        raise ValueError(
+            f"sections: {count} section(s) of {length} samples leave {contrasts} contrasts after each "
+            f"section's bias; REML of {parameters} parameters needs more than {parameters}"
+        )
+
+
+#: An estimate this close to its search bound (d; log σ_v²/σ_w²) is reported as at the bound.
+_AT_BOUND = {"d": 1e-4, "σ_v²/σ_w²": 1e-3}
+
+
+def _at_bounds(estimates: dict[str, float], bounds: dict[str, tuple[float, float]]) -> tuple[str, ...]:
+    """The names whose estimate lies within _AT_BOUND of one of its bounds."""
+    return tuple(
+        name
+        for name, value in estimates.items()
+        if min(abs(value - bounds[name][0]), abs(value - bounds[name][1])) <= _AT_BOUND[name]
+    )
+
+
 def _check_flags(estimate_d: Any, show_progress: Any) -> None:
     """``estimate_d`` True or False; ``show_progress`` True, False or None (on a terminal)."""
     check_boolean("estimate_d", estimate_d)
@@ -443,6 +470,7 @@ def estimate_noise_variances(
     """
     data = _check_sections(sections)
     _check_flags(estimate_d, show_progress)
+    _check_identifiable(data, 3 if estimate_d else 2)
     d = float(check_fractional_order("d", d))
     log_bounds = _check_ratio_bounds(ratio_bounds)
     d_limits = _order_limits(d, d_bounds) if estimate_d else (d, d)
@@ -473,6 +501,9 @@ def estimate_noise_variances(
         log_likelihood, scale = evaluate(d, log_ratio)
     finally:
         ticks.close()
+    estimates, bounds = {"σ_v²/σ_w²": log_ratio}, {"σ_v²/σ_w²": log_bounds}
+    if estimate_d:
+        estimates["d"], bounds["d"] = d, d_limits
     return VarianceEstimate(
         driving_variance=scale,
         white_variance=scale * math.exp(log_ratio),
@@ -481,4 +512,5 @@ def estimate_noise_variances(
         length=data.shape[1],
         log_likelihood=log_likelihood,
         d_estimated=estimate_d,
+        at_bound=_at_bounds(estimates, bounds),
     )

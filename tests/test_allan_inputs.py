@@ -137,3 +137,19 @@ def test_recording_with_a_sample_rate_is_refused(table):
     recording = recording_from_arrays({"wx": table[:, 0]}, sample_rate=RATE)
     with pytest.raises(ValueError, match="a Recording carries its own"):
         allan_variance(recording, RATE)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda y: allan_variance(y, RATE),
+        lambda y: allan_variance(list(y), RATE),
+        lambda y: fit_noise_model(y, RATE),
+    ],
+)
+def test_complex_samples_are_refused_not_cast(call):
+    # Casting to float64 would keep the real parts with only a ComplexWarning: refused by name, even when
+    # every imaginary part is 0 (the array's type says it holds something other than rates).
+    y = np.random.default_rng(3).standard_normal(2000) * (1.0 + 0.0j)
+    with pytest.raises(TypeError, match="y: must be an array of real numbers, got complex values"):
+        call(y)

@@ -93,6 +93,22 @@ def test_fit_d_estimates_the_order_with_the_variances(recording, tmp_path, capsy
     assert json.loads(output.read_text())["model"]["d"] != 0.5
 
 
+def test_fit_d_on_a_short_calibration_is_refused_or_flagged(recording, tmp_path, capsys):
+    # 3 samples leave 2 contrasts after the bias for 3 parameters: refused with the rule. 6 samples end
+    # REML at the bounds of both d and σ_v²/σ_w² (d = 0.05, ratio 10⁴ here): the estimate is printed with
+    # a notice naming them, not as if the segment had identified them.
+    path, _ = recording
+    output = tmp_path / "forecast.json"
+    arguments = ["predict", str(path), "--fit-d", "--output", str(output), "--calibration"]
+    assert main([*arguments, "3"]) == 2
+    assert "leave 2 contrasts after each section's bias; REML of 3 parameters" in capsys.readouterr().err
+    assert main([*arguments, "6"]) == 0
+    out = capsys.readouterr().out
+    notice = "notice: REML ended at the search bound of σ_v²/σ_w², d: the calibration segment (6 samples)"
+    assert notice in out
+    assert json.loads(output.read_text())["model"]["d"] == pytest.approx(0.05, abs=1e-4)
+
+
 def test_table1_json_has_every_method_with_population_values(capsys):
     assert main(["predict", "--table1", "--runs", "40", "--seed", "3", "--calibration", "50", "--json"]) == 0
     result = json.loads(capsys.readouterr().out)

@@ -74,12 +74,37 @@ def test_reml_with_estimated_order_maximises_the_dense_likelihood_in_d_too():
         assert moved.log_likelihood < estimate.log_likelihood
 
 
+def test_estimates_at_their_search_bound_are_named():
+    # This white-noise record (seed 0) leaves the driving variance nothing to explain: σ_v²/σ_w² runs to
+    # its upper bound (another seed, 4, shows enough chance low-frequency power to end inside, at 67). A
+    # record drawn with both terms (the test above) ends inside both bounds.
+    white = np.random.default_rng(0).standard_normal((1, 400))
+    estimate = estimate_noise_variances(white, 0.5, (1e-4, 1e4))
+    assert estimate.at_bound == ("σ_v²/σ_w²",)
+    assert estimate.white_variance / estimate.driving_variance == pytest.approx(1e4, rel=1e-2)
+    model = BiasModel(d=0.4, driving_variance=1.0, white_variance=2.0)
+    sections = simulate_sections(40, 100, model, rng=np.random.default_rng(11), bias=-1.0)
+    assert estimate_noise_variances(sections, 0.5, estimate_d=True).at_bound == ()
+
+
 _NOISY = np.random.default_rng(0).standard_normal((2, 5))
 
 INVALID = [
     ("one_dimensional", lambda: estimate_noise_variances(np.ones(10)), ValueError, "2-dimensional"),
     ("nan", lambda: estimate_noise_variances(np.array([[1.0, np.nan, 2.0]])), ValueError, "nan"),
     ("too_short", lambda: estimate_noise_variances(_NOISY[:, :2]), ValueError, "at least 3 samples"),
+    (
+        "no_more_contrasts_than_parameters",
+        lambda: estimate_noise_variances(_NOISY[:1, :3]),
+        ValueError,
+        "1 section\\(s\\) of 3 samples leave 2 contrasts after each section's bias; REML of 2 parameters",
+    ),
+    (
+        "no_more_contrasts_than_parameters_with_d",
+        lambda: estimate_noise_variances(_NOISY[:1, :4], estimate_d=True),
+        ValueError,
+        "leave 3 contrasts .* REML of 3 parameters needs more than 3",
+    ),
     ("constant", lambda: estimate_noise_variances(np.ones((2, 5))), ValueError, r"sections\[0\]: constant"),
     ("huge", lambda: estimate_noise_variances(1e200 * _NOISY), ValueError, r"within ±1e\+60"),
     ("d_one", lambda: estimate_noise_variances(_NOISY, 1.0), ValueError, "d=1.0"),

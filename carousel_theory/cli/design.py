@@ -104,7 +104,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(handler=run)
 
 
+def _check_variances(args: argparse.Namespace) -> None:
+    """Refuse a negative or non-finite --white, --rrw or --flicker by name (0 leaves the term out)."""
+    for option in ("white", "rrw", "flicker"):
+        value = getattr(args, option)
+        if not (math.isfinite(value) and value >= 0):
+            raise ValueError(
+                f"--{option}={value!r}: must be finite and >= 0 (a variance; 0 leaves the term out)"
+            )
+
+
 def _settings(args: argparse.Namespace) -> DesignSettings:
+    _check_variances(args)
     explicit = args.white > 0 or args.rrw > 0 or args.flicker > 0
     if args.noise is not None and explicit:
         raise ValueError("--noise: give either --noise FILE.json or --white/--rrw/--flicker, not both")

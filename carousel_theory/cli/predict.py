@@ -236,6 +236,13 @@ def _print_forecast(
         f"σ_v² = {output.variances(model.white_variance):.4g} {variance} ({note}); "
         f"bias prior {model.bias_prior}"
     )
+    if result.at_bound:
+        print(
+            f"notice: REML ended at the search bound of {', '.join(result.at_bound)}: the calibration "
+            f"segment ({result.calibration_length} samples) does not identify "
+            f"{'it' if len(result.at_bound) == 1 else 'them'}; give --d, --driving-variance and "
+            "--white-variance, or a longer --calibration"
+        )
     rate = output.rate_label
     print(
         f"KF forecast {rows['kf_prediction'][0]:.6g} → {rows['kf_prediction'][-1]:.6g} {rate} "
