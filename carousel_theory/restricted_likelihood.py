@@ -418,9 +418,9 @@ def _order_limits(d: float, d_bounds: tuple[float, float]) -> tuple[float, float
     return limits
 
 
-def _check_identifiable(data: np.ndarray, parameters: int) -> None:
-    """Refuse sections with no more contrasts than parameters: each section's unknown bias takes one
-    sample's worth, and the sections × (length − 1) contrasts left must outnumber the parameters."""
+def _identifiable(data: np.ndarray, parameters: int) -> np.ndarray:
+    """``data``, after refusing sections with no more contrasts than parameters: each section's unknown
+    bias takes one sample's worth, and the sections × (length − 1) contrasts left must outnumber them."""
     count, length = data.shape
     contrasts = count * (length - 1)
     if contrasts <= parameters:
@@ -428,18 +428,25 @@ def _check_identifiable(data: np.ndarray, parameters: int) -> None:
             f"sections: {count} section(s) of {length} samples leave {contrasts} contrasts after each "
             f"section's bias; REML of {parameters} parameters needs more than {parameters}"
         )
+    return data
 
 
 #: An estimate this close to its search bound (d; log σ_v²/σ_w²) is reported as at the bound.
 _AT_BOUND = {"d": 1e-4, "σ_v²/σ_w²": 1e-3}
 
 
-def _at_bounds(estimates: dict[str, float], bounds: dict[str, tuple[float, float]]) -> tuple[str, ...]:
-    """The names whose estimate lies within _AT_BOUND of one of its bounds."""
+def _at_bounds(
+    log_ratio: float, log_bounds: tuple[float, float], d: float, d_limits: tuple[float, float] | None
+) -> tuple[str, ...]:
+    """The names of the estimates within _AT_BOUND of one of their bounds (d only when estimated,
+    ``d_limits`` None otherwise)."""
+    estimates = {"σ_v²/σ_w²": (log_ratio, log_bounds)}
+    if d_limits is not None:
+        estimates["d"] = (d, d_limits)
     return tuple(
         name
-        for name, value in estimates.items()
-        if min(abs(value - bounds[name][0]), abs(value - bounds[name][1])) <= _AT_BOUND[name]
+        for name, (value, (low, high)) in estimates.items()
+        if min(abs(value - low), abs(value - high)) <= _AT_BOUND[name]
     )
 
 
@@ -468,9 +475,8 @@ def estimate_noise_variances(
     d over ``d_bounds`` (Brent's method on the profile in d of the profile in log ρ). Progress, one
     tick per likelihood evaluation, is shown on a terminal (``show_progress=None``) or as asked.
     """
-    data = _check_sections(sections)
     _check_flags(estimate_d, show_progress)
-    _check_identifiable(data, 3 if estimate_d else 2)
+    data = _identifiable(_check_sections(sections), 3 if estimate_d else 2)
     d = float(check_fractional_order("d", d))
     log_bounds = _check_ratio_bounds(ratio_bounds)
     d_limits = _order_limits(d, d_bounds) if estimate_d else (d, d)
@@ -501,9 +507,6 @@ def estimate_noise_variances(
         log_likelihood, scale = evaluate(d, log_ratio)
     finally:
         ticks.close()
-    estimates, bounds = {"σ_v²/σ_w²": log_ratio}, {"σ_v²/σ_w²": log_bounds}
-    if estimate_d:
-        estimates["d"], bounds["d"] = d, d_limits
     return VarianceEstimate(
         driving_variance=scale,
         white_variance=scale * math.exp(log_ratio),
@@ -512,5 +515,5 @@ def estimate_noise_variances(
         length=data.shape[1],
         log_likelihood=log_likelihood,
         d_estimated=estimate_d,
-        at_bound=_at_bounds(estimates, bounds),
+        at_bound=_at_bounds(log_ratio, log_bounds, d, d_limits if estimate_d else None),
     )
