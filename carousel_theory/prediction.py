@@ -32,6 +32,7 @@ from carousel_theory._validation import (
     check_positive_integer,
     check_positive_real,
 )
+from carousel_theory.evaluation_cost import check_budget, growing_kalman_cost
 from carousel_theory.fast_prediction import Forecast, _check_bias_prior, fast_kalman_forecast
 from carousel_theory.long_memory import autoregressive_coefficients
 
@@ -104,6 +105,7 @@ def kalman_forecast(
     white_variance: float = 0.0,
     bias_mean: float | None = None,
     bias_variance: float = math.inf,
+    force: bool = False,
 ) -> Forecast:
     """The growing-state Kalman filter of SJ 2012 §IV-A, run literally on one calibration.
 
@@ -113,7 +115,8 @@ def kalman_forecast(
     is b + f_{n+k}. A diffuse bias prior (``bias_variance=inf``) uses the exact diffuse
     initialisation: after y_1 the bias has mean y_1, variance σ_w² + σ_v² and covariance −σ_w² with
     f_1. Cost O((n + h)³) time and O((n + h)²) memory: this is the reference that
-    :func:`~carousel_theory.fast_prediction.fast_kalman_forecast` reproduces.
+    :func:`~carousel_theory.fast_prediction.fast_kalman_forecast` reproduces. Refused when its estimated
+    cost exceeds :mod:`carousel_theory.evaluation_cost`'s budget (about n + h = 5000), unless ``force``.
     """
     data = _check_calibration(calibration)
     if data.ndim != 1:
@@ -123,9 +126,10 @@ def kalman_forecast(
     sigma2_w = float(check_positive_real("driving_variance", driving_variance))
     sigma2_v = float(check_positive_real("white_variance", white_variance, allow_zero=True))
     bias_mean, prior = _check_bias_prior(bias_mean, bias_variance)
-
     n = data.shape[0]
     total = n + h
+    what = "growing-state Kalman filter (fast_kalman_forecast gives the same forecast without the state)"
+    check_budget(growing_kalman_cost(what, total), force=force)
     weights = autoregressive_coefficients(d, total)  # π_1 … π_total; eq. (6) [f_j]_i = π_{j−i}
     mean = np.zeros(total + 1)  # index 0: b; index j: f_j
     covariance = np.zeros((total + 1, total + 1))

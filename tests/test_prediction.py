@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 from conftest import Z_MONTE_CARLO
 
+from carousel_theory import evaluation_cost
+from carousel_theory.evaluation_cost import EvaluationBudgetError
 from carousel_theory.fast_prediction import Forecast
 from carousel_theory.prediction import (
     METHODS,
@@ -16,6 +18,7 @@ from carousel_theory.prediction import (
     batch_metrics,
     calibration_mean_forecast,
     integrated_error,
+    kalman_forecast,
     moving_average_forecast,
     population_metrics,
     predict,
@@ -185,3 +188,18 @@ def test_public_names_exist():
     for module in (prediction_module, fast_module, long_memory_module):
         for name in module.__all__:
             assert hasattr(module, name), f"{module.__name__}.{name}"
+
+
+def test_growing_state_filter_is_refused_over_the_budget_unless_forced(monkeypatch):
+    # n + h = 66 000 states: a 35 GB covariance and about 35 h (4.4·10⁻¹⁰ T³ s, measured): refused with
+    # the estimate and the way out, before anything is allocated.
+    calibration = np.random.default_rng(2).standard_normal(6000)
+    with pytest.raises(EvaluationBudgetError, match=r"n \+ h = 66,?000 states .* refused; pass force=True"):
+        kalman_forecast(calibration, 60_000)
+    # Under a budget every call exceeds, force=True runs it, with the result of the unforced call.
+    small = calibration[:50]
+    expected = kalman_forecast(small, 20).mean
+    monkeypatch.setattr(evaluation_cost, "DEFAULT_BUDGET_SECONDS", 1e-12)
+    with pytest.raises(EvaluationBudgetError):
+        kalman_forecast(small, 20)
+    np.testing.assert_array_equal(kalman_forecast(small, 20, force=True).mean, expected)
