@@ -106,7 +106,9 @@ def test_fit_d_on_a_short_calibration_is_refused_or_flagged(recording, tmp_path,
     out = capsys.readouterr().out
     notice = "notice: REML ended at the search bound of σ_v²/σ_w², d: the calibration segment (6 samples)"
     assert notice in out
-    assert json.loads(output.read_text())["model"]["d"] == pytest.approx(0.05, abs=1e-4)
+    model = json.loads(output.read_text())["model"]
+    assert model["d"] == pytest.approx(0.05, abs=1e-4)
+    assert model["at_bound"] == ["white_to_driving_variance_ratio", "d"]
 
 
 def test_table1_json_has_every_method_with_population_values(capsys):

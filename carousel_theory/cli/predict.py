@@ -177,7 +177,7 @@ def _run_recording(args: argparse.Namespace) -> int:
     rows = _forecast_columns(result, recording.time[args.start], 1.0 / recording.sample_rate, output)
     _print_forecast(result, rows, f"{recording.source} [{axis}]", output, 1.0 / recording.sample_rate)
     if args.output is not None:
-        _write_forecast(args.output, rows, result.model, axis, str(recording.source), output)
+        _write_forecast(args.output, rows, result, axis, str(recording.source), output)
         print(f"wrote {args.output} (rates in {output.rate_label})")
     return 0
 
@@ -341,7 +341,12 @@ def _write_csv_arrow(handle, rows: dict[str, np.ndarray]) -> bool:
     return True
 
 
-def _write_forecast(path: Path, rows: dict, model, axis: str, source: str, output: OutputUnits) -> None:
+#: The JSON names of the REML estimates that can end at a search bound.
+_BOUND_NAMES = {"d": "d", "σ_v²/σ_w²": "white_to_driving_variance_ratio"}
+
+
+def _write_forecast(path: Path, rows: dict, result, axis: str, source: str, output: OutputUnits) -> None:
+    model = result.model
     suffix = path.suffix.lower()
     if suffix == ".json":
         payload: dict[str, Any] = {
@@ -353,6 +358,7 @@ def _write_forecast(path: Path, rows: dict, model, axis: str, source: str, outpu
                 "driving_variance": model.driving_variance,
                 "white_variance": model.white_variance,
                 "bias_prior": model.bias_prior,
+                "at_bound": [_BOUND_NAMES[name] for name in result.at_bound],
                 "units": {"driving_variance": "(rad/s)^2", "white_variance": "(rad/s)^2"},
             },
             "columns": {
