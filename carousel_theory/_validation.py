@@ -137,11 +137,16 @@ def check_bin_index(name: str, value: Any, number_of_bins: int) -> int:
     return result
 
 
+def check_not_complex(name: str, values: Any) -> None:
+    """Refuse complex values: a cast to float64 would drop their imaginary parts with only a warning."""
+    if np.iscomplexobj(values):
+        raise TypeError(f"{name}: must be an array of real numbers, got complex values")
+
+
 def check_finite_array(name: str, values: Any, ndim: int = 1, min_length: int = 1) -> np.ndarray:
     """Return ``values`` as a float64 array, refusing NaN/inf (with the first bad index), wrong
     dimension and too few samples."""
-    if np.iscomplexobj(values):  # a cast to float64 would drop the imaginary parts with only a warning
-        raise TypeError(f"{name}: must be an array of real numbers, got complex values")
+    check_not_complex(name, values)
     try:
         array = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError) as error:

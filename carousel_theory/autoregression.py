@@ -373,9 +373,7 @@ def bartlett_covariance(model: np.ndarray, lags: int, n: int) -> np.ndarray:
     zero beyond) and n samples: (A(|k − h|) + A(h + k))/n with A(s) = Σ_j γ(j) γ(j + s)."""
     symmetric = np.concatenate((model[:0:-1], model))
     size = len(symmetric)
-    # einsum, not np.dot: for a slow AR term the model reaches thousands of lags, where a threaded BLAS dot
-    # costs more CPU time than it saves.
-    shifts = range(2 * lags + 1)
-    products = np.array([np.einsum("i,i->", symmetric[: size - s], symmetric[s:]) for s in shifts])
+    products = lag_products(symmetric, min(2 * lags, size - 1))
+    products = np.concatenate((products, np.zeros(2 * lags + 1 - len(products))))
     h = np.arange(lags + 1)
     return (products[np.abs(h[:, None] - h[None, :])] + products[h[:, None] + h[None, :]]) / n

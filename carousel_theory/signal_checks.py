@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from carousel_theory._validation import check_not_complex
 from carousel_theory.binary_scaling import binary_exponent, scaled_by_power_of_two
 
 __all__ = [
@@ -68,8 +69,7 @@ def check_noise_signal(values: Any, where: str) -> np.ndarray:
         Fewer than :data:`MINIMUM_SAMPLES` samples; every sample equal; a sample beyond
         ±:data:`LARGEST_RATE`; a standard deviation below :data:`SMALLEST_SPREAD`.
     """
-    if np.iscomplexobj(values):  # a cast to float64 would drop the imaginary parts with only a warning
-        raise TypeError(f"{where}: must be real numbers, got complex values")
+    check_not_complex(where, values)
     samples = np.asarray(values, dtype=np.float64)
     if samples.ndim != 1 or len(samples) < MINIMUM_SAMPLES:
         raise UnusableSignalError(

@@ -141,8 +141,8 @@ def test_plot_is_written(tmp_path, capsys):
     ("argv", "message"),
     [
         (["--white", "1", "--latitude", "10", "--duration", "-5"], "--duration=-5.0: must be > 0 seconds"),
-        (["--white=-1", "--latitude", "10", "--duration", "5"], "--white=-1.0: must be finite and >= 0"),
-        (["--white", "nan", "--latitude", "10", "--duration", "5"], "--white=nan: must be finite"),
+        (["--white=-1", "--latitude", "10", "--duration", "5"], "--white=-1.0: must be >= 0"),
+        (["--white", "nan", "--latitude", "10", "--duration", "5"], "--white=nan: must be a number, not NaN"),
         (["--white", "1", "--rrw", "inf", "--latitude", "10", "--duration", "5"], "--rrw=inf: must be"),
         (["--white", "1", "--latitude", "91", "--duration", "5"], "latitude=91.0: must lie in [-90, 90]"),
         (["--white", "1", "--latitude", "90", "--duration", "5"], "heading is undefined"),

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from carousel_theory._validation import check_positive_real
 from carousel_theory.cli._arguments import seed
 from carousel_theory.design import (
     DesignSettings,
@@ -107,11 +108,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def _check_variances(args: argparse.Namespace) -> None:
     """Refuse a negative or non-finite --white, --rrw or --flicker by name (0 leaves the term out)."""
     for option in ("white", "rrw", "flicker"):
-        value = getattr(args, option)
-        if not (math.isfinite(value) and value >= 0):
-            raise ValueError(
-                f"--{option}={value!r}: must be finite and >= 0 (a variance; 0 leaves the term out)"
-            )
+        check_positive_real(f"--{option}", getattr(args, option), allow_zero=True)
 
 
 def _settings(args: argparse.Namespace) -> DesignSettings:
